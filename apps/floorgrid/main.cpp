@@ -1,0 +1,31 @@
+// floorgrid: align a building's CAD floorplan with a robot's occupancy gridmap.
+#include <spdlog/spdlog.h>
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <exception>
+
+#include "apps/floorgrid/commands.hpp"
+#include "floorgrid/core/error.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App root{"floorgrid: align a CAD floorplan with a robot's occupancy gridmap"};
+  root.require_subcommand(1);
+  root.set_version_flag("--version", "floorgrid 0.1.0");
+  spdlog::set_pattern("%^%l%$: %v");
+  floorgrid::app::add_info_command(root);
+
+  try {
+    root.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int status = root.exit(e);
+    return status == 0 ? 0 : 2;
+  } catch (const floorgrid::InputError& e) {
+    spdlog::error("{}", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    spdlog::error("internal failure: {}", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,38 @@
+#pragma once
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace floorgrid::io {
+
+/// A file written atomically: bytes go to a temporary file beside the target, which replaces the
+/// target only on commit(). Destroyed without commit(), it removes the temporary file, so an
+/// interrupted or failed write never leaves a torn or half-written target.
+class AtomicFile {
+ public:
+  /// Opens a temporary file beside `target`; throws InputError when the folder is not writable.
+  explicit AtomicFile(std::filesystem::path target);
+  ~AtomicFile();
+  AtomicFile(const AtomicFile&) = delete;
+  AtomicFile& operator=(const AtomicFile&) = delete;
+
+  /// The stream to write to.
+  std::ofstream& stream() { return stream_; }
+  /// Flushes, checks for write errors and renames the temporary file onto the target.
+  void commit();
+
+ private:
+  std::filesystem::path target_;
+  std::filesystem::path temporary_;
+  std::ofstream stream_;
+  bool committed_ = false;
+};
+
+/// Writes `bytes` to `path` atomically.
+void write_file_atomically(const std::filesystem::path& path, const std::string& bytes);
+
+/// Reads a whole file as bytes; throws InputError naming the file when it cannot be read.
+std::string read_whole_file(const std::filesystem::path& path);
+
+}  // namespace floorgrid::io

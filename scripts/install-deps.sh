@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# Installs every dependency of floorgrid from Debian's packages. Idempotent: packages already
+# present are not touched, so a second run is quick and needs no network. Run as root.
+set -euo pipefail
+
+packages=(
+  # toolchain
+  build-essential cmake ninja-build pkg-config clang-format
+  # libraries linked by floorgrid (all BSD/MIT/Apache/MPL compatible; no GPL)
+  libeigen3-dev libnanoflann-dev libopencv-core-dev libopencv-imgproc-dev
+  libpng-dev zlib1g-dev libyaml-cpp-dev libdime-dev
+  libcli11-dev nlohmann-json3-dev libfmt-dev libspdlog-dev libcpp-httplib-dev
+  # tests and benchmarks
+  libgtest-dev libgmock-dev libbenchmark-dev
+  # independent DXF reader used only by tests (never linked)
+  python3-ezdxf
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+if [ "$(id -u)" -ne 0 ]; then
+  echo "install-deps: missing packages: ${missing[*]}" >&2
+  echo "install-deps: run as root (or: sudo $0)" >&2
+  exit 1
+fi
+
+echo "install-deps: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+apt-get update -qq
+apt-get install -y -qq --no-install-recommends "${missing[@]}"

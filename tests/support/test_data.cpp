@@ -1,0 +1,78 @@
+#include "tests/support/test_data.hpp"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cstdio>
+#include <fstream>
+#include <random>
+#include <sstream>
+
+namespace floorgrid::test {
+
+std::filesystem::path data_path(const std::string& relative) {
+  const char* env = std::getenv("FLOORGRID_DATA");
+  const std::filesystem::path root = env != nullptr ? env : FLOORGRID_DATA_DIR;
+  return root / relative;
+}
+
+TempDir::TempDir() {
+  static std::atomic<int> counter{0};
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  std::string name = info != nullptr ? std::string(info->test_suite_name()) + "." + info->name()
+                                     : std::string("floorgrid");
+  for (char& c : name) {
+    if (c == '/') c = '_';
+  }
+  path_ = std::filesystem::temp_directory_path() /
+          ("floorgrid-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + "-" +
+           name);
+  std::filesystem::remove_all(path_);
+  std::filesystem::create_directories(path_);
+}
+
+TempDir::~TempDir() {
+  std::error_code ec;
+  std::filesystem::remove_all(path_, ec);
+}
+
+void write_file(const std::filesystem::path& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+}
+
+std::string read_file(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+namespace {
+std::string slurp(const std::filesystem::path& path) {
+  std::string s = read_file(path);
+  std::filesystem::remove(path);
+  return s;
+}
+}  // namespace
+
+CommandResult run_command(const std::string& command) {
+  TempDir tmp;
+  const auto out_path = tmp / "stdout";
+  const auto err_path = tmp / "stderr";
+  const std::string full =
+      command + " >'" + out_path.string() + "' 2>'" + err_path.string() + "' </dev/null";
+  const int raw = std::system(full.c_str());
+  CommandResult result;
+  result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  result.out = slurp(out_path);
+  result.err = slurp(err_path);
+  return result;
+}
+
+CommandResult run_floorgrid(const std::string& args) {
+  return run_command(std::string("'") + FLOORGRID_BINARY + "' " + args);
+}
+
+}  // namespace floorgrid::test

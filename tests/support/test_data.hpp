@@ -1,0 +1,53 @@
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+namespace floorgrid::test {
+
+/// Path of a file in the shared real data folder (../shared/data beside the checkout).
+std::filesystem::path data_path(const std::string& relative);
+
+/// A fresh, empty temporary folder for one test, removed when the object dies.
+class TempDir {
+ public:
+  TempDir();
+  ~TempDir();
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  /// The folder.
+  const std::filesystem::path& path() const { return path_; }
+  /// A path inside the folder.
+  std::filesystem::path operator/(const std::string& name) const { return path_ / name; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+/// Writes `text` to `path` (binary, exact bytes).
+void write_file(const std::filesystem::path& path, const std::string& text);
+/// Reads a whole file as bytes.
+std::string read_file(const std::filesystem::path& path);
+
+/// Result of running a command: exit status and captured output.
+struct CommandResult {
+  int status = -1;      ///< exit status
+  std::string out;      ///< stdout
+  std::string err;      ///< stderr
+};
+/// Runs the built floorgrid binary with `args` (a shell-quoted argument string).
+CommandResult run_floorgrid(const std::string& args);
+/// Runs a shell command.
+CommandResult run_command(const std::string& command);
+
+}  // namespace floorgrid::test
+
+/// Skips the current test, printing why, when a shared data file is missing.
+#define FLOORGRID_REQUIRE_DATA(relative)                                                    \
+  do {                                                                                      \
+    if (!std::filesystem::exists(::floorgrid::test::data_path(relative))) {                 \
+      GTEST_SKIP() << "shared data missing: " << ::floorgrid::test::data_path(relative);    \
+    }                                                                                       \
+  } while (0)
