@@ -18,7 +18,8 @@ Eigen::Vector2d GridGeometry::to_cell_coordinates(const Eigen::Vector2d& point) 
 
 bool GridGeometry::cell_of(const Eigen::Vector2d& point, int& ix, int& iy) const {
   const Eigen::Vector2d c = to_cell_coordinates(point);
-  if (!(c.x() >= 0.0 && c.y() >= 0.0 && c.x() < width && c.y() < height)) return false;
+  if (!(c.x() >= 0.0 && c.y() >= 0.0 && c.x() < width && c.y() < height))
+    return false;
   ix = static_cast<int>(c.x());
   iy = static_cast<int>(c.y());
   return true;

@@ -21,10 +21,10 @@ inline constexpr std::int8_t kOccupancyOccupied = 100;
 /// outer corner of the lower-left cell and `origin.theta` (yaw) rotates the grid about it, so the
 /// centre of cell (ix, iy) is origin + R(yaw) * resolution * (ix + 0.5, iy + 0.5).
 struct GridGeometry {
-  int width = 0;            ///< cells along x
-  int height = 0;           ///< cells along y
-  double resolution = 0.05; ///< metres per cell
-  Pose2 origin;             ///< outer corner of the lower-left cell (metres) and yaw (radians)
+  int width = 0;             ///< cells along x
+  int height = 0;            ///< cells along y
+  double resolution = 0.05;  ///< metres per cell
+  Pose2 origin;              ///< outer corner of the lower-left cell (metres) and yaw (radians)
 
   /// Number of cells.
   std::size_t size() const { return static_cast<std::size_t>(width) * height; }
@@ -61,8 +61,8 @@ class OccupancyGrid {
 
   /// Where the grid lies.
   const GridGeometry& geometry() const { return geometry_; }
-  int width() const { return geometry_.width; }           ///< cells along x
-  int height() const { return geometry_.height; }         ///< cells along y
+  int width() const { return geometry_.width; }               ///< cells along x
+  int height() const { return geometry_.height; }             ///< cells along y
   double resolution() const { return geometry_.resolution; }  ///< metres per cell
 
   /// Linear index of cell (ix, iy), row-major from the bottom row.

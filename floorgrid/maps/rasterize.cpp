@@ -11,14 +11,16 @@ namespace floorgrid {
 double distance_to_segment(const Eigen::Vector2d& point, const Segment& segment) {
   const Eigen::Vector2d d = segment.b - segment.a;
   const double length_sq = d.squaredNorm();
-  if (length_sq == 0.0) return (point - segment.a).norm();
+  if (length_sq == 0.0)
+    return (point - segment.a).norm();
   const double t = std::clamp((point - segment.a).dot(d) / length_sq, 0.0, 1.0);
   return (point - (segment.a + t * d)).norm();
 }
 
 double distance_to_arc(const Eigen::Vector2d& point, const Arc& arc) {
   const Eigen::Vector2d r = point - arc.center;
-  if (arc.sweeps(std::atan2(r.y(), r.x()))) return std::abs(r.norm() - arc.radius);
+  if (arc.sweeps(std::atan2(r.y(), r.x())))
+    return std::abs(r.norm() - arc.radius);
   return std::min((point - arc.point_at(arc.start_angle)).norm(),
                   (point - arc.point_at(arc.end_angle)).norm());
 }
@@ -34,7 +36,8 @@ void mark_within(OccupancyGrid& grid, const Eigen::AlignedBox2d& box, double rea
   Eigen::AlignedBox2d cells;
   const Eigen::Vector2d lo = box.min().array() - reach;
   const Eigen::Vector2d hi = box.max().array() + reach;
-  for (const auto& corner : {lo, hi, Eigen::Vector2d(lo.x(), hi.y()), Eigen::Vector2d(hi.x(), lo.y())}) {
+  for (const auto& corner :
+       {lo, hi, Eigen::Vector2d(lo.x(), hi.y()), Eigen::Vector2d(hi.x(), lo.y())}) {
     cells.extend(g.to_cell_coordinates(corner));
   }
   const int x0 = std::max(0, static_cast<int>(std::floor(cells.min().x())));
@@ -43,12 +46,13 @@ void mark_within(OccupancyGrid& grid, const Eigen::AlignedBox2d& box, double rea
   const int y1 = std::min(g.height - 1, static_cast<int>(std::floor(cells.max().y())));
   for (int iy = y0; iy <= y1; ++iy) {
     for (int ix = x0; ix <= x1; ++ix) {
-      if (grid.state(ix, iy) == CellState::occupied) continue;
-      if (distance(g.cell_center(ix, iy)) <= reach) grid.set_state(ix, iy, CellState::occupied);
+      if (grid.state(ix, iy) == CellState::occupied)
+        continue;
+      if (distance(g.cell_center(ix, iy)) <= reach)
+        grid.set_state(ix, iy, CellState::occupied);
     }
   }
 }
-
 
 /// Marks the cells within `reach` of a segment. Works row by row in cell coordinates so that a
 /// long diagonal wall costs its length times its thickness, not its bounding box.
@@ -67,10 +71,12 @@ void mark_segment(OccupancyGrid& grid, const Segment& segment, double reach) {
     const double dy = b.y() - a.y();
     if (dy != 0.0) {
       double ta = (yc - r - a.y()) / dy, tb = (yc + r - a.y()) / dy;
-      if (ta > tb) std::swap(ta, tb);
+      if (ta > tb)
+        std::swap(ta, tb);
       t0 = std::max(t0, ta);
       t1 = std::min(t1, tb);
-      if (t0 > t1) continue;
+      if (t0 > t1)
+        continue;
     } else if (std::abs(a.y() - yc) > r) {
       continue;
     }
@@ -97,7 +103,8 @@ OccupancyGrid rasterize(const VectorFloorplan& plan, const RasterizeOptions& opt
     throw InputError("must be >= 0 (got " + std::to_string(options.wall_thickness) + ")", {}, 0,
                      "rasterize.wall_thickness");
   }
-  if (plan.empty()) throw InputError("the floorplan holds no wall geometry to rasterize");
+  if (plan.empty())
+    throw InputError("the floorplan holds no wall geometry to rasterize");
 
   GridGeometry g;
   if (geometry) {
@@ -120,10 +127,12 @@ OccupancyGrid rasterize(const VectorFloorplan& plan, const RasterizeOptions& opt
 
   OccupancyGrid grid(g, CellState::free);
   const double reach = 0.5 * std::max(options.wall_thickness, g.resolution);
-  for (const Segment& s : plan.segments()) mark_segment(grid, s, reach);
+  for (const Segment& s : plan.segments())
+    mark_segment(grid, s, reach);
   for (const Arc& arc : plan.arcs()) {
     const Eigen::AlignedBox2d box(arc.center.array() - arc.radius, arc.center.array() + arc.radius);
-    mark_within(grid, box, reach, [&](const Eigen::Vector2d& p) { return distance_to_arc(p, arc); });
+    mark_within(grid, box, reach,
+                [&](const Eigen::Vector2d& p) { return distance_to_arc(p, arc); });
   }
   return grid;
 }

@@ -12,7 +12,8 @@ constexpr double kTwoPi = 2.0 * std::numbers::pi;
 /// Angle of `angle` measured from `start` counter-clockwise, in [0, 2 pi).
 double sweep_from(double start, double angle) {
   double d = std::fmod(angle - start, kTwoPi);
-  if (d < 0.0) d += kTwoPi;
+  if (d < 0.0)
+    d += kTwoPi;
   return d;
 }
 }  // namespace
@@ -27,7 +28,8 @@ bool Arc::sweeps(double angle) const {
 
 int VectorFloorplan::layer_index(const std::string& layer_name) {
   const auto it = std::find(layers_.begin(), layers_.end(), layer_name);
-  if (it != layers_.end()) return static_cast<int>(it - layers_.begin());
+  if (it != layers_.end())
+    return static_cast<int>(it - layers_.begin());
   layers_.push_back(layer_name);
   return static_cast<int>(layers_.size()) - 1;
 }
@@ -40,7 +42,8 @@ void VectorFloorplan::add_segment(const Eigen::Vector2d& a, const Eigen::Vector2
 void VectorFloorplan::add_arc(const Eigen::Vector2d& center, double radius, double start_angle,
                               double end_angle, const std::string& layer) {
   double sweep = sweep_from(start_angle, end_angle);
-  if (sweep == 0.0) sweep = kTwoPi;  // equal angles: DXF's full circle
+  if (sweep == 0.0)
+    sweep = kTwoPi;  // equal angles: DXF's full circle
   arcs_.push_back({center, std::abs(radius), start_angle, start_angle + sweep, layer_index(layer)});
 }
 
@@ -56,7 +59,8 @@ Eigen::AlignedBox2d VectorFloorplan::bounds() const {
     // The extreme points at 0, 90, 180 and 270 degrees count where the arc sweeps them.
     for (int k = 0; k < 4; ++k) {
       const double angle = k * std::numbers::pi / 2.0;
-      if (arc.sweeps(angle)) box.extend(arc.point_at(angle));
+      if (arc.sweeps(angle))
+        box.extend(arc.point_at(angle));
     }
   }
   return box;
@@ -64,8 +68,10 @@ Eigen::AlignedBox2d VectorFloorplan::bounds() const {
 
 double VectorFloorplan::total_length() const {
   double total = 0.0;
-  for (const Segment& s : segments_) total += s.length();
-  for (const Arc& arc : arcs_) total += arc.length();
+  for (const Segment& s : segments_)
+    total += s.length();
+  for (const Arc& arc : arcs_)
+    total += arc.length();
   return total;
 }
 
@@ -73,7 +79,8 @@ Eigen::Matrix2Xd VectorFloorplan::sample_points(double spacing) const {
   std::vector<Eigen::Vector2d> points;
   for (const Segment& s : segments_) {
     const int n = std::max(1, static_cast<int>(std::ceil(s.length() / spacing)));
-    for (int i = 0; i <= n; ++i) points.push_back(s.a + (s.b - s.a) * (double(i) / n));
+    for (int i = 0; i <= n; ++i)
+      points.push_back(s.a + (s.b - s.a) * (double(i) / n));
   }
   for (const Arc& arc : arcs_) {
     const int n = std::max(1, static_cast<int>(std::ceil(arc.length() / spacing)));
@@ -82,7 +89,8 @@ Eigen::Matrix2Xd VectorFloorplan::sample_points(double spacing) const {
     }
   }
   Eigen::Matrix2Xd out(2, static_cast<Eigen::Index>(points.size()));
-  for (std::size_t i = 0; i < points.size(); ++i) out.col(static_cast<Eigen::Index>(i)) = points[i];
+  for (std::size_t i = 0; i < points.size(); ++i)
+    out.col(static_cast<Eigen::Index>(i)) = points[i];
   return out;
 }
 
