@@ -8,6 +8,7 @@
 
 #include "floorgrid/core/error.hpp"
 #include "floorgrid/io/image_io.hpp"
+#include "tests/support/expect_error.hpp"
 #include "tests/support/test_data.hpp"
 
 namespace floorgrid::io {
@@ -30,19 +31,7 @@ std::string yaml(const std::string& image, const std::string& extra = "") {
          extra;
 }
 
-/// Expects `fn` to throw an InputError whose text contains every one of `parts`.
-template <typename Fn>
-void expect_input_error(Fn fn, const std::vector<std::string>& parts) {
-  try {
-    fn();
-    ADD_FAILURE() << "no InputError thrown";
-  } catch (const InputError& e) {
-    for (const auto& part : parts) {
-      EXPECT_NE(std::string(e.what()).find(part), std::string::npos)
-          << "message '" << e.what() << "' lacks '" << part << "'";
-    }
-  }
-}
+using test::expect_input_error;
 
 TEST(MapIo, RealBonnGMapMatchesHeaderAndIndependentDecoder) {
   FLOORGRID_REQUIRE_DATA("bonn/GMap/GMap.yaml");

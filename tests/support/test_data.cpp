@@ -23,11 +23,11 @@ TempDir::TempDir() {
   std::string name = info != nullptr ? std::string(info->test_suite_name()) + "." + info->name()
                                      : std::string("floorgrid");
   for (char& c : name) {
-    if (c == '/') c = '_';
+    if (c == '/')
+      c = '_';
   }
-  path_ = std::filesystem::temp_directory_path() /
-          ("floorgrid-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + "-" +
-           name);
+  path_ = std::filesystem::temp_directory_path() / ("floorgrid-test-" + std::to_string(::getpid()) +
+                                                    "-" + std::to_string(counter++) + "-" + name);
   std::filesystem::remove_all(path_);
   std::filesystem::create_directories(path_);
 }

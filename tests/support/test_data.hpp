@@ -33,9 +33,9 @@ std::string read_file(const std::filesystem::path& path);
 
 /// Result of running a command: exit status and captured output.
 struct CommandResult {
-  int status = -1;      ///< exit status
-  std::string out;      ///< stdout
-  std::string err;      ///< stderr
+  int status = -1;  ///< exit status
+  std::string out;  ///< stdout
+  std::string err;  ///< stderr
 };
 /// Runs the built floorgrid binary with `args` (a shell-quoted argument string).
 CommandResult run_floorgrid(const std::string& args);
@@ -45,9 +45,9 @@ CommandResult run_command(const std::string& command);
 }  // namespace floorgrid::test
 
 /// Skips the current test, printing why, when a shared data file is missing.
-#define FLOORGRID_REQUIRE_DATA(relative)                                                    \
-  do {                                                                                      \
-    if (!std::filesystem::exists(::floorgrid::test::data_path(relative))) {                 \
-      GTEST_SKIP() << "shared data missing: " << ::floorgrid::test::data_path(relative);    \
-    }                                                                                       \
+#define FLOORGRID_REQUIRE_DATA(relative)                                                 \
+  do {                                                                                   \
+    if (!std::filesystem::exists(::floorgrid::test::data_path(relative))) {              \
+      GTEST_SKIP() << "shared data missing: " << ::floorgrid::test::data_path(relative); \
+    }                                                                                    \
   } while (0)

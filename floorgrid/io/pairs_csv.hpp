@@ -1,0 +1,20 @@
+#pragma once
+
+#include <filesystem>
+
+#include "floorgrid/mapping/reference_pairs.hpp"
+
+namespace floorgrid::io {
+
+/// Reads a pairs CSV: header `plan_x,plan_y,grid_x,grid_y[,weight]`, one pair per row.
+/// Coordinates are multiplied by `unit` (metres per file unit; 1 for metres). Blank lines and
+/// lines starting with '#' are skipped. Throws InputError naming the file, line and column for
+/// a bad header, a short or long row, a bad or non-finite number, a negative weight or no pairs.
+ReferencePairs read_pairs_csv(const std::filesystem::path& path, double unit = 1.0);
+
+/// Writes pairs as CSV (atomically), coordinates divided by `unit`, with the weight column when
+/// the pairs carry weights. Numbers are written with round-trip precision.
+void write_pairs_csv(const ReferencePairs& pairs, const std::filesystem::path& path,
+                     double unit = 1.0);
+
+}  // namespace floorgrid::io
