@@ -1,0 +1,303 @@
+#include "floorgrid/io/carmen_log.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numbers>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "floorgrid/core/error.hpp"
+#include "floorgrid/io/carmen_parse.hpp"
+#include "floorgrid/io/line_reader.hpp"
+
+namespace floorgrid::io {
+
+namespace {
+
+constexpr double degree = std::numbers::pi / 180.0;
+constexpr double carmen_default_max_range = 80.0;  // metres, CARMEN's reader for old lasers
+
+// The PARAMs that set one laser's resolution and maximum range, and their values so far.
+struct LaserParams {
+  const char* resolution_name;        // degrees
+  const char* max_range_name;         // metres, the name SPEC.md gives; wins over the next
+  const char* carmen_max_range_name;  // metres, the name CARMEN's robot module (and MRPT) use
+  std::optional<double> resolution = {};
+  std::optional<double> max_range = {};
+  std::optional<double> carmen_max_range = {};
+};
+
+struct ParamState {
+  LaserParams front{.resolution_name = "laser_front_laser_resolution",
+                    .max_range_name = "laser_front_laser_maxrange",
+                    .carmen_max_range_name = "robot_front_laser_max"};
+  LaserParams rear{.resolution_name = "laser_rear_laser_resolution",
+                   .max_range_name = "laser_rear_laser_maxrange",
+                   .carmen_max_range_name = "robot_rear_laser_max"};
+};
+
+// Remembers a laser PARAM's value; other PARAMs are only listed in the summary.
+void apply_param(std::string_view name, std::string_view value, FieldCursor& fields,
+                 ParamState& state) {
+  for (LaserParams* laser : {&state.front, &state.rear}) {
+    std::optional<double>* slot = nullptr;
+    if (name == laser->resolution_name)
+      slot = &laser->resolution;
+    if (name == laser->max_range_name)
+      slot = &laser->max_range;
+    if (name == laser->carmen_max_range_name)
+      slot = &laser->carmen_max_range;
+    if (slot == nullptr)
+      continue;
+    double number = 0.0;
+    if (!parse_number(value, number) || !std::isfinite(number) || number <= 0.0) {
+      fields.fail(
+          "PARAM " + std::string(name) + " must be a number > 0 (got '" + std::string(value) + "')",
+          "value");
+    }
+    *slot = number;
+  }
+}
+
+// CARMEN's guess of the angle between beams from their number (its readlog.c).
+UsedSetting guess_angle_increment(std::size_t beams) {
+  if (beams == 180 || beams == 181) {
+    return {degree, SettingSource::guess, "180/181 beams: 1 deg"};
+  }
+  if (beams == 360 || beams == 361) {
+    return {0.5 * degree, SettingSource::guess, "360/361 beams: 0.5 deg"};
+  }
+  if (beams == 400 || beams == 401) {
+    return {0.25 * degree, SettingSource::guess, "400/401 beams: 0.25 deg"};
+  }
+  if (beams == 1)
+    return {0.0, SettingSource::guess, "one beam: no increment"};
+  return {std::numbers::pi / static_cast<double>(beams - 1), SettingSource::guess,
+          "180 deg over the beams: pi/(n-1)"};
+}
+
+UsedSetting from_manifest(double value, const char* name) {
+  return {value, SettingSource::manifest, std::string("laser.") + name};
+}
+
+struct ResolvedSettings {
+  UsedSetting start_angle, angle_increment, max_range, min_range;
+};
+
+ResolvedSettings resolve_old_laser(const LaserScan& scan, const LaserParams& params,
+                                   const LaserSettings& manifest) {
+  ResolvedSettings used;
+  used.start_angle =
+      manifest.start_angle
+          ? from_manifest(*manifest.start_angle, "start_angle")
+          : UsedSetting{-std::numbers::pi / 2.0, SettingSource::guess, "CARMEN's fixed -90 deg"};
+  if (manifest.angle_increment) {
+    used.angle_increment = from_manifest(*manifest.angle_increment, "angle_increment");
+  } else if (params.resolution) {
+    used.angle_increment = {*params.resolution * degree, SettingSource::param,
+                            params.resolution_name};
+  } else {
+    used.angle_increment = guess_angle_increment(scan.ranges.size());
+  }
+  if (manifest.max_range) {
+    used.max_range = from_manifest(*manifest.max_range, "max_range");
+  } else if (params.max_range) {
+    used.max_range = {*params.max_range, SettingSource::param, params.max_range_name};
+  } else if (params.carmen_max_range) {
+    used.max_range = {*params.carmen_max_range, SettingSource::param, params.carmen_max_range_name};
+  } else {
+    used.max_range = {carmen_default_max_range, SettingSource::guess, "CARMEN's default 80 m"};
+  }
+  return used;
+}
+
+ResolvedSettings resolve_robot_laser(const LaserScan& scan, const LaserSettings& manifest,
+                                     FieldCursor& fields) {
+  ResolvedSettings used;
+  used.start_angle = manifest.start_angle ? from_manifest(*manifest.start_angle, "start_angle")
+                                          : UsedSetting{scan.start_angle, SettingSource::message,
+                                                        scan.type + " start_angle"};
+  used.angle_increment = manifest.angle_increment
+                             ? from_manifest(*manifest.angle_increment, "angle_increment")
+                             : UsedSetting{scan.angle_increment, SettingSource::message,
+                                           scan.type + " angular_resolution"};
+  used.max_range = manifest.max_range ? from_manifest(*manifest.max_range, "max_range")
+                                      : UsedSetting{scan.max_range, SettingSource::message,
+                                                    scan.type + " maximum_range"};
+  // Only the message's own values can still be bad: the manifest's were validated up front.
+  if (!std::isfinite(used.start_angle.value))
+    fields.fail("must be finite", "start_angle");
+  if (!std::isfinite(used.angle_increment.value) || used.angle_increment.value == 0.0) {
+    fields.fail("must be finite and non-zero", "angular_resolution");
+  }
+  if (!std::isfinite(used.max_range.value) || used.max_range.value <= 0.0) {
+    fields.fail("must be a finite number > 0", "maximum_range");
+  }
+  return used;
+}
+
+// Counts of one message type, and the last kept timestamp to tell backwards ones.
+struct TypeTrack {
+  MessageTypeCount count;
+  double last_kept = -std::numeric_limits<double>::infinity();
+};
+
+using TypeTracks = std::map<std::string, TypeTrack, std::less<>>;
+
+TypeTrack& track_of(TypeTracks& tracks, std::string_view type) {
+  auto found = tracks.find(type);
+  if (found == tracks.end())
+    found = tracks.emplace(std::string(type), TypeTrack{}).first;
+  return found->second;
+}
+
+// Zero, negative or non-finite timestamps are not times; earlier than the last kept message of
+// the type is backwards. Equal timestamps are kept (CSAIL prints 6 digits: most are equal).
+bool keep_timestamp(TypeTrack& track, double timestamp) {
+  if (!std::isfinite(timestamp) || timestamp <= 0.0) {
+    ++track.count.skipped_zero_timestamp;
+    return false;
+  }
+  if (timestamp < track.last_kept) {
+    ++track.count.skipped_backwards_timestamp;
+    return false;
+  }
+  track.last_kept = timestamp;
+  ++track.count.kept;
+  return true;
+}
+
+bool is_type_name(std::string_view type) {
+  return std::all_of(type.begin(), type.end(), [](char c) {
+    return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_';
+  });
+}
+
+void record_config(RobotLogSummary& summary, const LaserScan& scan, const ResolvedSettings& used) {
+  auto same = [&](const LaserConfigUsage& config) {
+    return config.beams == scan.ranges.size() && config.type == scan.type &&
+           config.start_angle == used.start_angle &&
+           config.angle_increment == used.angle_increment && config.max_range == used.max_range &&
+           config.min_range == used.min_range;
+  };
+  auto found = std::find_if(summary.laser_configs.begin(), summary.laser_configs.end(), same);
+  if (found == summary.laser_configs.end()) {
+    summary.laser_configs.push_back({scan.type, scan.ranges.size(), used.start_angle,
+                                     used.angle_increment, used.max_range, used.min_range, 0});
+    found = std::prev(summary.laser_configs.end());
+  }
+  ++found->scans;
+  ++summary.beams_per_scan[scan.ranges.size()];
+}
+
+// One laser message: parsed, its settings resolved, kept or skipped by its timestamp.
+void read_laser(std::string_view type, FieldCursor& fields, std::size_t line,
+                const ParamState& params, const LaserSettings& manifest, TypeTrack& track,
+                RobotLog& log) {
+  const bool old_style = is_old_laser_type(type);
+  LaserScan scan = old_style ? parse_old_laser(fields) : parse_robot_laser(fields);
+  scan.type = std::string(type);
+  scan.line = line;
+  const LaserParams& side = type == "RLASER" ? params.rear : params.front;
+  ResolvedSettings used = old_style ? resolve_old_laser(scan, side, manifest)
+                                    : resolve_robot_laser(scan, manifest, fields);
+  used.min_range = manifest.min_range ? from_manifest(*manifest.min_range, "min_range")
+                                      : UsedSetting{0.0, SettingSource::guess, "CARMEN has none"};
+  if (!keep_timestamp(track, scan.timestamp))
+    return;
+  scan.start_angle = used.start_angle.value;
+  scan.angle_increment = used.angle_increment.value;
+  scan.max_range = used.max_range.value;
+  scan.min_range = used.min_range.value;
+  record_config(log.summary, scan, used);
+  log.scans.push_back(std::move(scan));
+}
+
+void summarize_time(RobotLog& log) {
+  double first = std::numeric_limits<double>::infinity();
+  double last = -std::numeric_limits<double>::infinity();
+  for (const OdometryReading& odometry : log.odometry) {
+    first = std::min(first, odometry.timestamp);
+    last = std::max(last, odometry.timestamp);
+  }
+  for (const LaserScan& scan : log.scans) {
+    first = std::min(first, scan.timestamp);
+    last = std::max(last, scan.timestamp);
+  }
+  log.summary.first_timestamp = first;
+  log.summary.last_timestamp = last;
+  log.summary.duration = last - first;
+}
+
+}  // namespace
+
+RobotLog read_carmen(const std::filesystem::path& path, const CarmenReadOptions& options) {
+  validate_laser_settings(options.laser);
+  LineReader reader(path);
+  RobotLog log;
+  log.summary.source = reader.file();
+  ParamState params;
+  TypeTracks tracks;
+
+  std::string_view line;
+  while (reader.next(line)) {
+    const std::size_t number = reader.line_number();
+    if (number == 1 && line.starts_with("\xEF\xBB\xBF"))
+      line.remove_prefix(3);  // UTF-8 BOM
+    FieldCursor fields(line, reader.file(), number);
+    if (fields.at_end()) {
+      TypeTrack& track = track_of(tracks, "(empty)");
+      ++track.count.lines;
+      ++track.count.not_data;
+      continue;
+    }
+    const std::string_view type = fields.word("type");
+    if (type.front() == '#') {
+      TypeTrack& track = track_of(tracks, "#");
+      ++track.count.lines;
+      ++track.count.not_data;
+      continue;
+    }
+    if (!is_type_name(type)) {
+      fields.fail("not a CARMEN message type: '" + std::string(type.substr(0, 40)) +
+                      "' (is this a CARMEN log?)",
+                  "type");
+    }
+    TypeTrack& track = track_of(tracks, type);
+    ++track.count.lines;
+    if (type == "ODOM") {
+      OdometryReading odometry = parse_odom(fields);
+      odometry.line = number;
+      if (keep_timestamp(track, odometry.timestamp))
+        log.odometry.push_back(odometry);
+    } else if (is_old_laser_type(type) || is_robot_laser_type(type)) {
+      read_laser(type, fields, number, params, options.laser, track, log);
+    } else if (type == "PARAM") {
+      const std::string_view name = fields.word("name");
+      const std::string_view value = fields.word("value");
+      log.summary.params[std::string(name)] = std::string(value);
+      apply_param(name, value, fields, params);
+      ++track.count.not_data;
+    } else {
+      ++track.count.not_data;  // NEFF, SYNC, TRUEPOS, RAWLASER*, ...: nothing to read
+    }
+  }
+
+  log.summary.lines = reader.line_number();
+  for (auto& [type, track] : tracks)
+    log.summary.messages[type] = track.count;
+  if (log.scans.empty()) {
+    throw InputError(
+        "no laser scan (FLASER, RLASER, ROBOTLASER1) with a valid timestamp in the log: "
+        "nothing to localize with",
+        reader.file(), static_cast<long>(log.summary.lines));
+  }
+  log.summary.ranges = count_ranges(log.scans);
+  summarize_time(log);
+  return log;
+}
+
+}  // namespace floorgrid::io

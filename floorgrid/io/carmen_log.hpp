@@ -1,0 +1,42 @@
+#pragma once
+
+#include <filesystem>
+
+#include "floorgrid/localization/robot_log.hpp"
+
+namespace floorgrid::io {
+
+/// Options of read_carmen.
+struct CarmenReadOptions {
+  /// Laser settings from the dataset manifest (`laser:`); each one given overrides the log's
+  /// PARAMs, a ROBOTLASER1's own fields and CARMEN's guesses, for every scan.
+  LaserSettings laser;
+};
+
+/// Reads a CARMEN text log, plain or gzip-compressed (told by content, not by name).
+///
+/// Read as data: `ODOM`, `FLASER` and `RLASER` (old style: beam i at -pi/2 + i * inc relative
+/// to the laser pose; a rear laser's pose in the log already faces backwards), and
+/// `ROBOTLASER1`/`ROBOTLASER2` (with their own start angle, resolution and maximum range).
+/// Every message must end in `timestamp host logger_timestamp`, as CARMEN's own readers need.
+///
+/// Laser settings, highest precedence first: `options.laser` (the manifest); a ROBOTLASER's
+/// own fields; PARAMs (`laser_front_laser_resolution` in degrees, max range from
+/// `laser_front_laser_maxrange` or else CARMEN's `robot_front_laser_max`; `rear` for RLASER);
+/// CARMEN's guess (180/181 beams -> 1 degree, 360/361 -> 0.5, 400/401 -> 0.25, else
+/// pi/(n-1); max range 80 m; no minimum range). A PARAM takes effect from its line on, as in
+/// CARMEN's log player.
+///
+/// Skipped and counted per type in `summary.messages`: PARAM (kept in `summary.params`), NEFF,
+/// `#` comments, blank lines, unknown types (RAWLASER*, TRUEPOS, ...), and ODOM/laser messages
+/// whose timestamp is zero, negative or not finite, or strictly earlier than the last kept
+/// message of the same type (equal timestamps are kept). So the kept timestamps never
+/// decrease within a type.
+///
+/// Throws InputError naming the file, the 1-based line and the field when the file is missing,
+/// a line is truncated or has extra fields, a number is malformed, a beam count is not in
+/// 1..100000, a gzip stream is corrupt or ends early, a used PARAM is not a positive number, or
+/// the log has no laser scan to localize with.
+RobotLog read_carmen(const std::filesystem::path& path, const CarmenReadOptions& options = {});
+
+}  // namespace floorgrid::io
