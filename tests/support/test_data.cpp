@@ -61,8 +61,9 @@ CommandResult run_command(const std::string& command) {
   TempDir tmp;
   const auto out_path = tmp / "stdout";
   const auto err_path = tmp / "stderr";
+  // The subshell makes the redirections apply to a whole pipeline, not its last stage.
   const std::string full =
-      command + " >'" + out_path.string() + "' 2>'" + err_path.string() + "' </dev/null";
+      "( " + command + " ) >'" + out_path.string() + "' 2>'" + err_path.string() + "' </dev/null";
   const int raw = std::system(full.c_str());
   CommandResult result;
   result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
