@@ -1,0 +1,134 @@
+#include "floorgrid/io/dxf_geometry.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace floorgrid::io {
+
+namespace {
+
+template <class... Ts>
+struct Overloaded : Ts... {
+  using Ts::operator()...;
+};
+template <class... Ts>
+Overloaded(Ts...) -> Overloaded<Ts...>;
+
+void add_polyline(VectorFloorplan& plan, const std::vector<Eigen::Vector2d>& points, double k,
+                  const std::string& layer) {
+  for (std::size_t i = 1; i < points.size(); ++i) {
+    // Tessellating a finite curve of astronomical size can still overflow.
+    if (!points[i - 1].allFinite() || !points[i].allFinite()) {
+      continue;
+    }
+    plan.add_segment(points[i - 1] * k, points[i] * k, layer);
+  }
+}
+
+}  // namespace
+
+int DrawingGeometry::layer_index(const std::string& layer) {
+  const auto [it, added] = index_.emplace(layer, static_cast<int>(layers.size()));
+  if (added) {
+    layers.push_back(layer);
+  }
+  return it->second;
+}
+
+bool is_finite(const decltype(DrawingItem::curve)& curve) {
+  const auto all_finite = [](const auto& points) {
+    return std::all_of(points.begin(), points.end(),
+                       [](const Eigen::Vector2d& p) { return p.allFinite(); });
+  };
+  return std::visit(Overloaded{
+                        [](const DrawingLine& l) { return l.a.allFinite() && l.b.allFinite(); },
+                        [](const CircularArc2& a) {
+                          return a.center.allFinite() && std::isfinite(a.radius) &&
+                                 std::isfinite(a.start) && std::isfinite(a.end);
+                        },
+                        [](const DrawingEllipse& e) {
+                          return e.center.allFinite() && e.u.allFinite() && e.v.allFinite() &&
+                                 std::isfinite(e.t0) && std::isfinite(e.t1);
+                        },
+                        [&](const BSpline2& s) { return all_finite(s.control); },
+                        [&](const DrawingPolyline& p) { return all_finite(p.points); },
+                    },
+                    curve);
+}
+
+Eigen::AlignedBox2d drawing_extent(const DrawingGeometry& geometry) {
+  Eigen::AlignedBox2d box;
+  for (const DrawingItem& item : geometry.items) {
+    std::visit(
+        Overloaded{
+            [&](const DrawingLine& l) {
+              box.extend(l.a);
+              box.extend(l.b);
+            },
+            [&](const CircularArc2& a) {
+              VectorFloorplan one;
+              one.add_arc(a.center, a.radius, a.start, a.end, "");
+              box.extend(one.bounds());
+            },
+            [&](const DrawingEllipse& e) {
+              for (int i = 0; i <= 64; ++i) {
+                const double t = e.t0 + (e.t1 - e.t0) * i / 64.0;
+                box.extend(Eigen::Vector2d(e.center + e.u * std::cos(t) + e.v * std::sin(t)));
+              }
+            },
+            [&](const BSpline2& s) {
+              for (const Eigen::Vector2d& p : s.control) {
+                box.extend(p);
+              }
+            },
+            [&](const DrawingPolyline& p) {
+              for (const Eigen::Vector2d& q : p.points) {
+                box.extend(q);
+              }
+            },
+        },
+        item.curve);
+  }
+  return box;
+}
+
+std::vector<PlanArc> drawing_arcs(const DrawingGeometry& geometry) {
+  std::vector<PlanArc> arcs;
+  for (const DrawingItem& item : geometry.items) {
+    if (const auto* a = std::get_if<CircularArc2>(&item.curve)) {
+      arcs.push_back({a->radius, a->end - a->start});
+    }
+  }
+  return arcs;
+}
+
+VectorFloorplan drawing_to_floorplan(const DrawingGeometry& geometry, double metres_per_unit,
+                                     double tolerance_m) {
+  const double k = metres_per_unit;
+  const double tolerance = tolerance_m / k;  // drawing units
+  VectorFloorplan plan;
+  for (const DrawingItem& item : geometry.items) {
+    if (!item.kept) {
+      continue;
+    }
+    const std::string& layer = geometry.layers[item.layer];
+    std::visit(
+        Overloaded{
+            [&](const DrawingLine& l) { plan.add_segment(l.a * k, l.b * k, layer); },
+            [&](const CircularArc2& a) {
+              plan.add_arc(a.center * k, a.radius * k, a.start, a.end, layer);
+            },
+            [&](const DrawingEllipse& e) {
+              add_polyline(plan, ellipse_points(e.center, e.u, e.v, e.t0, e.t1, tolerance), k,
+                           layer);
+            },
+            [&](const BSpline2& s) { add_polyline(plan, bspline_points(s, tolerance), k, layer); },
+            [&](const DrawingPolyline& p) { add_polyline(plan, p.points, k, layer); },
+        },
+        item.curve);
+  }
+  return plan;
+}
+
+}  // namespace floorgrid::io

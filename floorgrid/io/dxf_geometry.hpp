@@ -1,0 +1,69 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <map>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "floorgrid/io/dxf_curves.hpp"
+#include "floorgrid/maps/plan_units.hpp"
+#include "floorgrid/maps/vector_floorplan.hpp"
+
+namespace floorgrid::io {
+
+/// A straight piece in world XY, drawing units.
+struct DrawingLine {
+  Eigen::Vector2d a = Eigen::Vector2d::Zero();  ///< start
+  Eigen::Vector2d b = Eigen::Vector2d::Zero();  ///< end
+};
+
+/// `center + u cos t + v sin t` for t in [t0, t1]: an ellipse, or an arc under a non-uniform
+/// scale, in world XY, drawing units.
+struct DrawingEllipse {
+  Eigen::Vector2d center = Eigen::Vector2d::Zero();  ///< centre
+  Eigen::Vector2d u = Eigen::Vector2d::UnitX();      ///< the point at t = 0, from the centre
+  Eigen::Vector2d v = Eigen::Vector2d::UnitY();      ///< the point at t = pi/2, from the centre
+  double t0 = 0.0;                                   ///< radians
+  double t1 = 0.0;                                   ///< radians, > t0
+};
+
+/// Points joined by straight pieces (a spline given by fit points only), drawing units.
+struct DrawingPolyline {
+  std::vector<Eigen::Vector2d> points;  ///< in order
+};
+
+/// One curve of the expanded drawing (world XY, drawing units), with its layer.
+struct DrawingItem {
+  std::variant<DrawingLine, CircularArc2, DrawingEllipse, BSpline2, DrawingPolyline> curve;
+  int layer = 0;     ///< index into DrawingGeometry::layers
+  bool kept = true;  ///< false when the layer filters drop it (it still tells the units)
+};
+
+/// The drawing after block expansion, before the unit is known.
+struct DrawingGeometry {
+  std::vector<std::string> layers;  ///< names, by DrawingItem::layer
+  std::vector<DrawingItem> items;   ///< every curve, kept or not
+
+  /// Index of `layer`, added when new.
+  int layer_index(const std::string& layer);
+
+ private:
+  std::map<std::string, int> index_;
+};
+
+/// Whether every number defining `curve` is finite (transforms of huge values can overflow).
+bool is_finite(const decltype(DrawingItem::curve)& curve);
+
+/// Bounds of every item (kept or not), drawing units. Ellipses are bounded by sampling and
+/// splines by their control points: the bounds tell units, not geometry.
+Eigen::AlignedBox2d drawing_extent(const DrawingGeometry& geometry);
+/// Every circular arc (kept or not), as unit evidence.
+std::vector<PlanArc> drawing_arcs(const DrawingGeometry& geometry);
+/// The kept items as a floorplan in metres: coordinates times `metres_per_unit`; ellipses and
+/// splines become segments with chord error at most `tolerance_m` metres.
+VectorFloorplan drawing_to_floorplan(const DrawingGeometry& geometry, double metres_per_unit,
+                                     double tolerance_m);
+
+}  // namespace floorgrid::io
