@@ -19,8 +19,16 @@ configure: deps $(BUILD_DIR)/build.ninja
 build: configure
 	cmake --build $(BUILD_DIR) -j $(JOBS)
 
+DATA ?= ../shared/data
+
+# For now the main job is `floorgrid info` on real files; it becomes the full pipeline once the
+# simulator and the aligner exist.
 demo: build
-	./$(BUILD_DIR)/floorgrid demo --out $(DEMO_OUT)
+	@if [ -d "$(DATA)" ]; then \
+	  ./$(BUILD_DIR)/floorgrid info $(DATA)/bonn/GMap/GMap.yaml && \
+	  ./$(BUILD_DIR)/floorgrid info $(DATA)/dxf/house_floorplan_r2004.dxf && \
+	  ./$(BUILD_DIR)/floorgrid info $(DATA)/fr079/freiburg-079-corrected.log.gz; \
+	else echo "demo: $(DATA) is missing: nothing to show yet"; fi
 
 test: build
 	ctest --test-dir $(BUILD_DIR) --output-on-failure -j $(JOBS)

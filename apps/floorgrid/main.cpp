@@ -1,4 +1,5 @@
 // floorgrid: align a building's CAD floorplan with a robot's occupancy gridmap.
+#include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
@@ -12,6 +13,8 @@ int main(int argc, char** argv) {
   CLI::App root{"floorgrid: align a CAD floorplan with a robot's occupancy gridmap"};
   root.require_subcommand(1);
   root.set_version_flag("--version", "floorgrid 0.1.0");
+  // Messages and progress go to stderr; stdout carries only results (text or --json).
+  spdlog::set_default_logger(spdlog::stderr_color_st("floorgrid"));
   spdlog::set_pattern("%^%l%$: %v");
   floorgrid::app::add_info_command(root);
 

@@ -37,6 +37,25 @@ PlanUnitEvidence header_evidence(const DxfDocument& doc) {
   return evidence;
 }
 
+/// `$EXTMIN`/`$EXTMAX` scaled to metres, or an empty box when absent or not a box.
+Eigen::AlignedBox2d header_extent(const DxfDocument& doc, double metres_per_unit) {
+  const DxfGroup* min_x = doc.header_value("$EXTMIN", 10);
+  const DxfGroup* min_y = doc.header_value("$EXTMIN", 20);
+  const DxfGroup* max_x = doc.header_value("$EXTMAX", 10);
+  const DxfGroup* max_y = doc.header_value("$EXTMAX", 20);
+  Eigen::AlignedBox2d box;
+  if (min_x && min_y && max_x && max_y) {
+    const Eigen::Vector2d lo(group_double(*min_x), group_double(*min_y));
+    const Eigen::Vector2d hi(group_double(*max_x), group_double(*max_y));
+    // AutoCAD writes +-1e20 for an empty drawing: only a real box counts.
+    if ((lo.array() <= hi.array()).all() && (hi - lo).maxCoeff() < 1e15) {
+      box.extend(lo * metres_per_unit);
+      box.extend(hi * metres_per_unit);
+    }
+  }
+  return box;
+}
+
 std::string summary_of_skipped(const DxfReport& report) {
   std::size_t annotation = 0, unsupported = 0;
   for (const auto& [type, n] : report.annotation_skipped) {
@@ -87,6 +106,7 @@ DxfFloorplan read_document(const std::string& text, const DxfReadOptions& option
                      {}, 0, options.include_layers.empty() ? "exclude_layers" : "include_layers");
   }
   report.extent_m = out.plan.bounds();
+  report.header_extent_m = header_extent(doc, choice.metres_per_unit);
   return out;
 }
 

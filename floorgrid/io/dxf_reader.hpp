@@ -42,6 +42,9 @@ struct DxfReport {
   std::size_t paper_space_skipped = 0;       ///< entities of the ENTITIES section in paper space
   std::size_t inserts_expanded = 0;  ///< INSERT entities expanded (nested ones per placement)
   Eigen::AlignedBox2d extent_m;      ///< bounds of the plan read, metres
+  /// `$EXTMIN`/`$EXTMAX` in metres (the extent AutoCAD saved, annotation included); empty when
+  /// the header has none
+  Eigen::AlignedBox2d header_extent_m;
 };
 
 /// A floorplan read from DXF.

@@ -1,0 +1,46 @@
+#include "apps/floorgrid/cli_util.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <charconv>
+#include <cmath>
+
+#include "floorgrid/core/error.hpp"
+
+namespace floorgrid::app {
+
+std::vector<double> parse_numbers(const std::string& text, const std::string& option,
+                                  const std::vector<std::size_t>& counts) {
+  std::vector<double> values;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t comma = text.find(',', start);
+    const std::string part = text.substr(start, comma == std::string::npos ? comma : comma - start);
+    double v = 0.0;
+    const char* begin = part.data();
+    const char* end = part.data() + part.size();
+    const auto [ptr, ec] = std::from_chars(begin, end, v);
+    if (ec != std::errc() || ptr != end || part.empty() || !std::isfinite(v)) {
+      throw InputError(fmt::format("'{}' is not a finite number (in '{}')", part, text), {}, 0,
+                       option);
+    }
+    values.push_back(v);
+    if (comma == std::string::npos)
+      break;
+    start = comma + 1;
+  }
+  if (std::find(counts.begin(), counts.end(), values.size()) == counts.end()) {
+    throw InputError(fmt::format("expected {} comma-separated numbers (got {} in '{}')",
+                                 fmt::join(counts, " or "), values.size(), text),
+                     {}, 0, option);
+  }
+  return values;
+}
+
+Pose2 parse_pose(const std::string& text, const std::string& option) {
+  const auto v = parse_numbers(text, option, {2, 3});
+  return {v[0], v[1], v.size() == 3 ? v[2] : 0.0};
+}
+
+}  // namespace floorgrid::app

@@ -1,0 +1,18 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "floorgrid/geometry/pose2.hpp"
+
+namespace floorgrid::app {
+
+/// Parses "a,b,c" into numbers; throws InputError naming `option` when a part is not a finite
+/// number or the count is not one of `counts`.
+std::vector<double> parse_numbers(const std::string& text, const std::string& option,
+                                  const std::vector<std::size_t>& counts);
+
+/// Parses "x,y,yaw" (or "x,y" with yaw 0) into a pose; throws InputError naming `option`.
+Pose2 parse_pose(const std::string& text, const std::string& option);
+
+}  // namespace floorgrid::app

@@ -1,0 +1,328 @@
+#include "floorgrid/io/describe.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <numbers>
+
+#include "floorgrid/core/error.hpp"
+#include "floorgrid/io/atomic_file.hpp"
+#include "floorgrid/io/carmen_log.hpp"
+#include "floorgrid/io/dataset_manifest.hpp"
+#include "floorgrid/io/dxf_reader.hpp"
+#include "floorgrid/io/map_io.hpp"
+#include "floorgrid/io/pairs_csv.hpp"
+
+namespace floorgrid::io {
+
+namespace {
+
+using nlohmann::json;
+
+std::string lower_extension(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+json box_json(const Eigen::AlignedBox2d& box) {
+  if (box.isEmpty())
+    return nullptr;
+  return {{"min", {box.min().x(), box.min().y()}},
+          {"max", {box.max().x(), box.max().y()}},
+          {"size", {box.sizes().x(), box.sizes().y()}}};
+}
+
+json grid_json(const LoadedMap& map) {
+  const OccupancyGrid& grid = map.grid;
+  const GridGeometry& g = grid.geometry();
+  const CellCounts counts = grid.counts();
+  json j = {{"width", g.width},
+            {"height", g.height},
+            {"resolution_m", g.resolution},
+            {"origin", {g.origin.x, g.origin.y, g.origin.theta}},
+            {"bounds_m", box_json(g.bounds())},
+            {"cells",
+             {{"occupied", counts.occupied}, {"free", counts.free}, {"unknown", counts.unknown}}},
+            {"mode", to_string(map.metadata.mode)},
+            {"negate", map.metadata.negate},
+            {"occupied_thresh", map.metadata.occupied_thresh},
+            {"free_thresh", map.metadata.free_thresh},
+            {"image", map.image_path.string()},
+            {"image_format", map.image_description}};
+  j["warnings"] = map.warnings;
+  return j;
+}
+
+json describe_map(const std::filesystem::path& path, const DescribeOptions& options, bool bare) {
+  if (!bare)
+    return grid_json(read_map_yaml(path));
+  MapMetadata settings;
+  settings.resolution = options.resolution.value_or(1.0);
+  settings.origin = options.origin.value_or(Pose2{});
+  json j = grid_json(read_map_image(path, settings));
+  if (!options.resolution) {
+    // Without a resolution only pixel counts mean anything.
+    j.erase("resolution_m");
+    j.erase("bounds_m");
+    j.erase("origin");
+    j["warnings"].push_back("bare image without --resolution: sizes are in pixels only");
+  }
+  return j;
+}
+
+json describe_dxf(const std::filesystem::path& path, const DxfReadOptions& options = {}) {
+  const DxfFloorplan dxf = read_dxf(path, options);
+  const DxfReport& r = dxf.report;
+  json j = {{"version", r.version},
+            {"header_units", r.header_units},
+            {"units_used", r.units_used},
+            {"metres_per_unit", r.metres_per_unit},
+            {"units_reason", r.units_reason},
+            {"extent_m", box_json(dxf.plan.bounds())},
+            {"header_extent_m", box_json(r.header_extent_m)},
+            {"segments", dxf.plan.segments().size()},
+            {"arcs", dxf.plan.arcs().size()},
+            {"wall_length_m", dxf.plan.total_length()},
+            {"entities_by_type", r.entities_by_type},
+            {"entities_by_layer", r.entities_by_layer},
+            {"annotation_skipped", r.annotation_skipped},
+            {"unsupported_skipped", r.unsupported_skipped},
+            {"excluded_by_layer_filter", r.excluded_by_layer_filter},
+            {"inserts_expanded", r.inserts_expanded}};
+  j["warnings"] = r.warnings;
+  return j;
+}
+
+json setting_json(const UsedSetting& s, double factor) {
+  return {{"value", s.value * factor}, {"source", to_string(s.source)}, {"detail", s.detail}};
+}
+
+json describe_log(const std::filesystem::path& path, const CarmenReadOptions& options = {}) {
+  const RobotLog log = read_carmen(path, options);
+  const RobotLogSummary& s = log.summary;
+  json messages = json::object();
+  std::vector<std::string> unknown_types;
+  static const std::vector<std::string> kKnown = {
+      "ODOM", "FLASER", "RLASER", "ROBOTLASER1", "ROBOTLASER2", "PARAM", "NEFF", "#", "(empty)"};
+  for (const auto& [type, count] : s.messages) {
+    messages[type] = {{"lines", count.lines},
+                      {"kept", count.kept},
+                      {"skipped_zero_timestamp", count.skipped_zero_timestamp},
+                      {"skipped_backwards_timestamp", count.skipped_backwards_timestamp},
+                      {"not_data", count.not_data}};
+    if (std::find(kKnown.begin(), kKnown.end(), type) == kKnown.end())
+      unknown_types.push_back(type);
+  }
+  json lasers = json::array();
+  constexpr double kDeg = 180.0 / std::numbers::pi;
+  for (const LaserConfigUsage& c : s.laser_configs) {
+    lasers.push_back({{"type", c.type},
+                      {"scans", c.scans},
+                      {"beams", c.beams},
+                      {"start_angle_deg", setting_json(c.start_angle, kDeg)},
+                      {"angle_increment_deg", setting_json(c.angle_increment, kDeg)},
+                      {"max_range_m", setting_json(c.max_range, 1.0)},
+                      {"min_range_m", setting_json(c.min_range, 1.0)}});
+  }
+  json beams = json::object();
+  for (const auto& [n, scans] : s.beams_per_scan)
+    beams[std::to_string(n)] = scans;
+  return {{"lines", s.lines},
+          {"messages", messages},
+          {"unknown_types", unknown_types},
+          {"laser_scans", log.scans.size()},
+          {"odometry", log.odometry.size()},
+          {"beams_per_scan", beams},
+          {"lasers", lasers},
+          {"ranges",
+           {{"total", s.ranges.total},
+            {"hits", s.ranges.hits},
+            {"no_return", s.ranges.no_return},
+            {"too_close", s.ranges.too_close},
+            {"invalid", s.ranges.invalid}}},
+          {"params", s.params},
+          {"first_timestamp", s.first_timestamp},
+          {"last_timestamp", s.last_timestamp},
+          {"duration_s", s.duration}};
+}
+
+json describe_pairs(const std::filesystem::path& path) {
+  const ReferencePairs pairs = read_pairs_csv(path);
+  Eigen::AlignedBox2d plan, grid;
+  for (Eigen::Index i = 0; i < pairs.size(); ++i) {
+    plan.extend(pairs.points_in_plan.col(i));
+    grid.extend(pairs.points_in_grid.col(i));
+  }
+  return {{"count", pairs.size()},
+          {"weighted", pairs.has_weights()},
+          {"plan_bounds", box_json(plan)},
+          {"grid_bounds", box_json(grid)}};
+}
+
+json describe_dataset(const std::filesystem::path& path) {
+  const DatasetManifest m = read_manifest(path);
+  json j = {{"manifest", m.manifest_path.string()}, {"name", m.name}};
+  const bool plan_is_dxf = lower_extension(m.floorplan) == ".dxf";
+  if (plan_is_dxf) {
+    DxfReadOptions dxf_options;
+    dxf_options.units = m.floorplan_units;
+    dxf_options.include_layers = m.floorplan_layers;
+    dxf_options.exclude_layers = m.floorplan_layers_exclude;
+    j["floorplan"] = describe_dxf(m.floorplan, dxf_options);
+    j["floorplan"]["kind"] = "dxf";
+  } else {
+    j["floorplan"] =
+        grid_json(read_map(m.floorplan, m.floorplan_resolution, m.floorplan_origin, "floorplan"));
+    j["floorplan"]["kind"] = "map";
+  }
+  j["floorplan"]["path"] = m.floorplan.string();
+  j["floorplan_units"] = m.floorplan_units;
+  j["floorplan_scale"] = m.floorplan_scale ? json(*m.floorplan_scale) : json("auto");
+  j["gridmap"] = grid_json(read_map(m.gridmap, m.gridmap_resolution, m.gridmap_origin, "gridmap"));
+  j["gridmap"]["path"] = m.gridmap.string();
+  j["gridmap"]["kind"] = "map";
+  if (m.log) {
+    CarmenReadOptions options;
+    options.laser = m.laser;
+    j["log"] = describe_log(*m.log, options);
+    j["log"]["kind"] = "log";
+    j["log"]["path"] = m.log->string();
+  }
+  j["initial_pose"] =
+      m.initial_pose
+          ? json{{"plan",
+                  {m.initial_pose->plan.x, m.initial_pose->plan.y, m.initial_pose->plan.theta}},
+                 {"grid",
+                  {m.initial_pose->grid.x, m.initial_pose->grid.y, m.initial_pose->grid.theta}}}
+          : json("none: global localization");
+  if (m.odometry_noise)
+    j["odometry_noise"] = *m.odometry_noise;
+  json truth = json::object();
+  if (m.truth.manual_pairs) {
+    truth["manual_pairs"] = describe_pairs(*m.truth.manual_pairs);
+    truth["manual_pairs"]["path"] = m.truth.manual_pairs->string();
+  }
+  if (m.truth.warp)
+    truth["warp"] = m.truth.warp->string();
+  j["truth"] = truth;
+  return j;
+}
+
+/// Whether a YAML file is a map (has `image`) or a dataset (has `floorplan` or `gridmap`).
+FileKind yaml_kind(const std::filesystem::path& path) {
+  YAML::Node node;
+  try {
+    node = YAML::Load(read_whole_file(path));
+  } catch (const YAML::Exception& e) {
+    throw InputError("YAML syntax error: " + e.msg, path.string(), e.mark.line + 1);
+  }
+  if (node.IsMap() && node["image"])
+    return FileKind::map_yaml;
+  if (node.IsMap() && (node["floorplan"] || node["gridmap"]))
+    return FileKind::dataset;
+  throw InputError(
+      "a YAML file that is neither a map (no 'image' key) nor a dataset manifest "
+      "(no 'floorplan' or 'gridmap' key)",
+      path.string());
+}
+
+}  // namespace
+
+std::string to_string(FileKind kind) {
+  switch (kind) {
+    case FileKind::map_yaml:
+      return "map";
+    case FileKind::image:
+      return "image";
+    case FileKind::dxf:
+      return "dxf";
+    case FileKind::log:
+      return "log";
+    case FileKind::pairs:
+      return "pairs";
+    case FileKind::dataset:
+      return "dataset";
+    case FileKind::json:
+      return "json";
+  }
+  return "?";
+}
+
+FileKind detect_file_kind(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    return FileKind::dataset;
+  if (!std::filesystem::exists(path, ec))
+    throw InputError("no such file or folder", path.string());
+  const std::string ext = lower_extension(path);
+  if (ext == ".yaml" || ext == ".yml")
+    return yaml_kind(path);
+  if (ext == ".pgm" || ext == ".png")
+    return FileKind::image;
+  if (ext == ".dxf")
+    return FileKind::dxf;
+  if (ext == ".csv")
+    return FileKind::pairs;
+  if (ext == ".json")
+    return FileKind::json;
+  if (ext == ".gz" || ext == ".log" || ext == ".carmen" || ext == ".clf" || ext == ".txt") {
+    return FileKind::log;
+  }
+  // Unknown name: look at the first bytes.
+  std::ifstream in(path, std::ios::binary);
+  std::string head(64, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  if (head.rfind("\x89PNG", 0) == 0 || head.rfind("P5", 0) == 0 || head.rfind("P2", 0) == 0) {
+    return FileKind::image;
+  }
+  if (head.rfind("\x1f\x8b", 0) == 0 || head.rfind("# CARMEN", 0) == 0 ||
+      head.rfind("PARAM", 0) == 0 || head.rfind("ODOM", 0) == 0 || head.rfind("FLASER", 0) == 0) {
+    return FileKind::log;
+  }
+  if (head.rfind("plan_x", 0) == 0)
+    return FileKind::pairs;
+  if (head.find("SECTION") != std::string::npos || head.rfind("AutoCAD Binary DXF", 0) == 0) {
+    return FileKind::dxf;
+  }
+  throw InputError(
+      "cannot tell what this file is (expected a map YAML, PGM/PNG image, DXF, "
+      "CARMEN log, pairs CSV or dataset)",
+      path.string());
+}
+
+json describe(const std::filesystem::path& path, const DescribeOptions& options) {
+  const FileKind kind = detect_file_kind(path);
+  json j;
+  switch (kind) {
+    case FileKind::map_yaml:
+      j = describe_map(path, options, false);
+      break;
+    case FileKind::image:
+      j = describe_map(path, options, true);
+      break;
+    case FileKind::dxf:
+      j = describe_dxf(path);
+      break;
+    case FileKind::log:
+      j = describe_log(path);
+      break;
+    case FileKind::pairs:
+      j = describe_pairs(path);
+      break;
+    case FileKind::dataset:
+      j = describe_dataset(path);
+      break;
+    case FileKind::json:
+      throw InputError("model and truth JSON files are not described yet", path.string());
+  }
+  j["path"] = path.string();
+  j["kind"] = to_string(kind);
+  return j;
+}
+
+}  // namespace floorgrid::io
