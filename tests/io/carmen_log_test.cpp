@@ -25,12 +25,6 @@ using test::write_file;
 
 constexpr double pi = std::numbers::pi;
 
-// run_command() puts "</dev/null" after the command, which would feed the last stage of a
-// pipeline instead of the pipe: run pipelines in a subshell.
-test::CommandResult run_pipeline(const std::string& pipeline) {
-  return run_command("(" + pipeline + ")");
-}
-
 // A FLASER line with the given ranges (as text), poses and timestamp.
 std::string flaser(const std::vector<std::string>& ranges, const std::string& poses,
                    const std::string& timestamp, const std::string& type = "FLASER") {
@@ -448,7 +442,7 @@ TEST(CarmenLogErrorTest, TruncatedGzipLogNamesTheLineReached) {
   const std::string bytes = read_file(dir / "run.log.gz");
   write_file(dir / "cut.log.gz", bytes.substr(0, bytes.size() * 2 / 3));
   const long complete = std::stol(
-      run_pipeline("zcat '" + (dir / "cut.log.gz").string() + "' 2>/dev/null | wc -l").out);
+      run_command("zcat '" + (dir / "cut.log.gz").string() + "' 2>/dev/null | wc -l").out);
   const InputError error = catch_input_error([&] { read_carmen(dir / "cut.log.gz"); });
   expect_located(error, dir / "cut.log.gz", complete + 1, "");
 }
@@ -500,7 +494,7 @@ TEST(CarmenLogErrorTest, BadManifestSettingNamesTheField) {
 // ---- the real logs: every expected number comes from zcat/grep/awk, not from the reader ----
 
 long count_of(const std::string& command) {
-  const auto result = run_pipeline(command);
+  const auto result = run_command(command);
   EXPECT_EQ(result.err, "");
   return std::stol(result.out);
 }
@@ -523,7 +517,7 @@ TimestampTruth timestamp_truth(const std::filesystem::path& file, const std::str
       "+0; if (t<=0) z++; else if (n && t<last) b++; else { if (n && t==last) e++; "
       "if (!n) first=t; n++; last=t } } END { printf \"%d %d %d %d %.17g %.17g\\n\", n, z, b, e, "
       "first, last }";
-  const auto result = run_pipeline("zcat '" + file.string() + "' | awk '" + program + "'");
+  const auto result = run_command("zcat '" + file.string() + "' | awk '" + program + "'");
   TimestampTruth truth;
   std::istringstream(result.out) >> truth.kept >> truth.zero >> truth.backwards >> truth.equal >>
       truth.first >> truth.last;
@@ -591,7 +585,7 @@ TEST(CarmenRealLogTest, Fr079Has4791ScansOf360BeamsAtHalfADegree) {
   EXPECT_EQ(log.summary.last_timestamp, std::max(odometry.last, scans.last));
 
   // The first scan, number by number, against the text as the C library parses it.
-  const auto first = run_pipeline("zcat '" + file.string() + "' | grep -m1 '^FLASER '");
+  const auto first = run_command("zcat '" + file.string() + "' | grep -m1 '^FLASER '");
   std::istringstream fields(first.out);
   std::string word;
   fields >> word >> word;
