@@ -29,9 +29,9 @@ struct InverseOptions {
 struct InverseResult {
   Eigen::Vector2d point = Eigen::Vector2d::Zero();  ///< the world point found, metres
   int iterations = 0;  ///< Newton steps taken (0: the start was already within tolerance)
-  double residual =
-      std::numeric_limits<double>::infinity();  ///< |world_to_grid(point) - target|, m
-  bool converged = false;                       ///< residual <= tolerance
+  /// |world_to_grid(point) - target|, metres.
+  double residual = std::numeric_limits<double>::infinity();
+  bool converged = false;  ///< residual <= tolerance
 };
 
 /// Many inverted points.
