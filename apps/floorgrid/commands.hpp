@@ -7,5 +7,7 @@ namespace floorgrid::app {
 /// Each CLI verb registers its subcommand (options and callback) on the root app.
 /// The callbacks throw InputError on bad input; main() maps it to exit status 2.
 void add_info_command(CLI::App& root);
+/// `floorgrid simulate`.
+void add_simulate_command(CLI::App& root);
 
 }  // namespace floorgrid::app

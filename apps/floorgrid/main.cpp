@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   spdlog::set_default_logger(spdlog::stderr_color_st("floorgrid"));
   spdlog::set_pattern("%^%l%$: %v");
   floorgrid::app::add_info_command(root);
+  floorgrid::app::add_simulate_command(root);
 
   try {
     root.parse(argc, argv);

@@ -45,7 +45,8 @@ void AtomicFile::commit() {
   }
   std::error_code ec;
   std::filesystem::rename(temporary_, target_, ec);
-  if (ec) throw InputError("cannot replace the file: " + ec.message(), target_.string());
+  if (ec)
+    throw InputError("cannot replace the file: " + ec.message(), target_.string());
   committed_ = true;
 }
 
@@ -55,17 +56,29 @@ void write_file_atomically(const std::filesystem::path& path, const std::string&
   file.commit();
 }
 
+void prepare_output_folder(const std::filesystem::path& folder) {
+  std::error_code ec;
+  std::filesystem::create_directories(folder, ec);
+  if (ec || !std::filesystem::is_directory(folder)) {
+    throw InputError("cannot create the output folder" + (ec ? ": " + ec.message() : std::string()),
+                     folder.string());
+  }
+}
+
 std::string read_whole_file(const std::filesystem::path& path) {
   std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw InputError("no such file", path.string());
+  if (!std::filesystem::exists(path, ec))
+    throw InputError("no such file", path.string());
   if (std::filesystem::is_directory(path, ec)) {
     throw InputError("is a folder, not a file", path.string());
   }
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(std::string("cannot open: ") + std::strerror(errno), path.string());
+  if (!in)
+    throw InputError(std::string("cannot open: ") + std::strerror(errno), path.string());
   std::ostringstream ss;
   ss << in.rdbuf();
-  if (in.bad()) throw InputError("read error", path.string());
+  if (in.bad())
+    throw InputError("read error", path.string());
   return ss.str();
 }
 

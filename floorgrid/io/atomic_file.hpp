@@ -32,6 +32,10 @@ class AtomicFile {
 /// Writes `bytes` to `path` atomically.
 void write_file_atomically(const std::filesystem::path& path, const std::string& bytes);
 
+/// Creates `folder` (and its parents) when missing; throws InputError naming it when it cannot be
+/// created or is not a folder.
+void prepare_output_folder(const std::filesystem::path& folder);
+
 /// Reads a whole file as bytes; throws InputError naming the file when it cannot be read.
 std::string read_whole_file(const std::filesystem::path& path);
 

@@ -89,3 +89,23 @@ bool layer_passes(const LayerFilter& filter, std::string_view layer) {
 }
 
 }  // namespace floorgrid
+
+namespace floorgrid {
+
+VectorFloorplan filter_layers(const VectorFloorplan& plan, const LayerFilter& filter) {
+  VectorFloorplan out;
+  const auto& layers = plan.layers();
+  for (const Segment& s : plan.segments()) {
+    const std::string& layer = layers[static_cast<std::size_t>(s.layer)];
+    if (layer_passes(filter, layer))
+      out.add_segment(s.a, s.b, layer);
+  }
+  for (const Arc& a : plan.arcs()) {
+    const std::string& layer = layers[static_cast<std::size_t>(a.layer)];
+    if (layer_passes(filter, layer))
+      out.add_arc(a.center, a.radius, a.start_angle, a.end_angle, layer);
+  }
+  return out;
+}
+
+}  // namespace floorgrid

@@ -30,3 +30,12 @@ bool layer_matches(std::string_view pattern, std::string_view layer);
 bool layer_passes(const LayerFilter& filter, std::string_view layer);
 
 }  // namespace floorgrid
+
+#include "floorgrid/maps/vector_floorplan.hpp"
+
+namespace floorgrid {
+
+/// The part of `plan` on the layers `filter` keeps.
+VectorFloorplan filter_layers(const VectorFloorplan& plan, const LayerFilter& filter);
+
+}  // namespace floorgrid

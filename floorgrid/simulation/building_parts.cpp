@@ -75,7 +75,7 @@ Eigen::Vector2d left_of(const Eigen::Vector2d& n) {
 }
 }  // namespace
 
-void add_door_symbol(Building& b, const Door& door) {
+void add_door(Building& b, const Door& door, bool closed) {
   const Eigen::Vector2d n = door.into_room;
   const Eigen::Vector2d hinge =
       door.center + n * (door.wall_thickness / 2) + left_of(n) * (door.width / 2);
@@ -84,10 +84,14 @@ void add_door_symbol(Building& b, const Door& door) {
   b.door_swings.push_back({hinge, door.width, open_angle - std::numbers::pi / 2, open_angle,
                            static_cast<int>(SurfaceKind::door_leaf)});
   b.door_lines.push_back({hinge, hinge + n * door.width, static_cast<int>(SurfaceKind::door_leaf)});
-  // The physical leaf: 4 cm thick, against the hinge side of the opening.
-  const Eigen::Vector2d outer = hinge + left_of(n) * 0.04;
+  // The physical leaf, 4 cm thick: open, against the hinge side of the opening; closed, across
+  // the opening on the room side.
   Eigen::AlignedBox2d leaf(hinge);
-  leaf.extend(outer + n * door.width);
+  if (closed) {
+    leaf.extend(hinge - left_of(n) * door.width - n * 0.04);
+  } else {
+    leaf.extend(hinge + left_of(n) * 0.04 + n * door.width);
+  }
   add_box_outline(b.door_leaves, leaf, SurfaceKind::door_leaf);
 }
 

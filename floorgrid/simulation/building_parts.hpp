@@ -23,10 +23,11 @@ std::vector<Eigen::AlignedBox2d> cut_openings(const std::vector<Eigen::AlignedBo
 Door make_door(const Eigen::AlignedBox2d& wall, double along, double width,
                const Eigen::Vector2d& into_room, std::vector<Eigen::AlignedBox2d>& openings);
 
-/// Adds a door's plan symbol (swing arc and leaf line, in `b.door_swings`/`b.door_leaves`) with
-/// the leaf open at 90 degrees into the room, hinged at the opening's left edge as seen from the
-/// corridor.
-void add_door_symbol(Building& b, const Door& door);
+/// Adds a door: its plan symbol (swing arc and leaf line on DOORS, leaf drawn open at 90 degrees
+/// into the room, hinged at the opening's left edge as seen from the corridor) and its physical
+/// leaf in the world, open against the wall or, when `closed`, shut across the opening (the
+/// room behind it then stays unseen from outside).
+void add_door(Building& b, const Door& door, bool closed);
 
 /// The four edges of a box as segments of `kind`.
 void add_box_outline(std::vector<Segment>& out, const Eigen::AlignedBox2d& box, SurfaceKind kind);

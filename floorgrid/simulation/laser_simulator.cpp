@@ -16,11 +16,11 @@ std::string got(double value) {
   return out.str();
 }
 
-// Uniform in the open interval (0, max_range): Random::uniform includes its lower end.
-double draw_random_reading(double max_range, Random& random) {
+// Uniform in the open interval (0, limit): Random::uniform includes its lower end.
+double draw_random_reading(double limit, Random& random) {
   double reading = 0.0;
   do {
-    reading = random.uniform(0.0, max_range);
+    reading = random.uniform(0.0, limit);
   } while (!(reading > 0.0));
   return reading;
 }
@@ -73,7 +73,9 @@ SimulatedScan simulate_scan(const SegmentRayCaster& caster, const Pose2& robot_p
     // a hit), so a scene change alters only the beams it touches.
     if (random.bernoulli(spec.random_reading_fraction)) {
       beam.random = true;
-      beam.reading = draw_random_reading(spec.max_range, random);
+      // Something unexpected stops the beam before the surface it would have met: a laser
+      // cannot read beyond a wall, so a random reading never reaches past the true range.
+      beam.reading = draw_random_reading(beam.true_range, random);
     } else if (hit) {
       const double noisy = hit->range + random.normal(spec.range_noise_sigma);
       beam.reading = std::clamp(noisy, 0.0, spec.max_range);

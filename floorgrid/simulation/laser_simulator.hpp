@@ -37,7 +37,7 @@ struct SimulatedBeam {
   double true_range = 0.0;  ///< metres: exact distance to the surface met, or max_range if none
   int segment = -1;         ///< index of the segment met (SegmentRayCaster::segments), or -1
   int layer = -1;           ///< Segment::layer of the segment met (its kind tag), or -1
-  bool random = false;      ///< the reading is a random one, uniform in (0, max_range)
+  bool random = false;      ///< the reading is a random one, uniform in (0, true_range)
 
   /// Whether the true beam met a surface within max_range (whatever the reading says).
   bool hit() const { return segment >= 0; }
@@ -59,7 +59,9 @@ struct SimulatedScan {
 };
 
 /// Simulates one scan from the true robot pose. Per beam, in beam order: with probability
-/// random_reading_fraction the reading is uniform in (0, max_range) (marked random); otherwise a
+/// random_reading_fraction the reading is uniform in (0, true_range) (marked random: something
+/// unexpected stopped the beam before the surface it would have met; a beam meeting nothing
+/// draws in (0, max_range)); otherwise a
 /// beam that meets a surface within max_range reads its true range plus normal noise of sigma
 /// range_noise_sigma, clamped to [0, max_range], and a beam that meets nothing reads exactly
 /// max_range. The true range and what the beam met are recorded whatever the reading. Uses

@@ -128,17 +128,17 @@ Building make_office(Random& random) {
     }
   }
   building_parts::finish_walls(b, openings);
-  for (const Room& room : b.rooms)
-    building_parts::add_door_symbol(b, room.doors.front());
 
-  // Which rooms the tour skips (never visited) and which one the gridmap shows rotated: both
-  // away from the tour's start.
+  // Which room the tour skips (never visited, its door shut) and which one the gridmap shows
+  // rotated: both away from the tour's start.
   const int n = static_cast<int>(b.rooms.size());
   const int skipped = static_cast<int>(random.integer(n / 3, n - 1));
   b.rooms[static_cast<std::size_t>(skipped)].visited = false;
   do {
     b.rotated_room = static_cast<int>(random.integer(2, n - 1));
   } while (b.rotated_room == skipped);
+  for (const Room& room : b.rooms)
+    building_parts::add_door(b, room.doors.front(), !room.visited);
 
   // The tour: along each corridor, into every visited room whose door opens onto it.
   std::vector<std::size_t> corridor_bands;

@@ -70,8 +70,6 @@ Building make_warehouse(Random& random) {
     y += aisle;
   }
   building_parts::finish_walls(b, openings);
-  for (const Room& room : b.rooms)
-    building_parts::add_door_symbol(b, room.doors.front());
 
   // The tour: the offices first, then a serpentine through the aisles, leaving the last
   // aisles and one office unvisited.
@@ -81,6 +79,8 @@ Building make_warehouse(Random& random) {
   do {
     b.rotated_room = static_cast<int>(random.integer(0, offices - 1));
   } while (b.rotated_room == skipped_office);
+  for (const Room& room : b.rooms)
+    building_parts::add_door(b, room.doors.front(), !room.visited);
   b.tour.emplace_back(te + 1.5, main_yc);
   for (const Room& room : b.rooms) {
     if (room.visited)

@@ -78,9 +78,9 @@ TEST(LaserSimulator, NoiseHasTheSpecifiedStatistics) {
       ASSERT_LE(b.reading, spec.max_range);
       if (b.random) {
         ++random_readings;
-        random_sum += b.reading;
+        random_sum += b.reading / b.true_range;  // uniform in (0, 1) of the true range
         ASSERT_GT(b.reading, 0.0);
-        ASSERT_LT(b.reading, spec.max_range);
+        ASSERT_LT(b.reading, b.true_range);  // never past the surface the beam meets
         continue;
       }
       const double error = b.reading - b.true_range;
@@ -96,9 +96,10 @@ TEST(LaserSimulator, NoiseHasTheSpecifiedStatistics) {
   EXPECT_NEAR(std_dev, 0.02, 0.05 * 0.02);
   const double fraction = static_cast<double>(random_readings) / static_cast<double>(beams);
   EXPECT_NEAR(fraction, 0.01, 4 * std::sqrt(0.01 * 0.99 / static_cast<double>(beams)));
-  // Random readings are uniform over (0, 30): mean 15, standard error 30 / sqrt(12 n).
+  // Random readings are uniform over (0, true range): as a fraction of it, mean 1/2 and
+  // standard error 1 / sqrt(12 n).
   const double nr = static_cast<double>(random_readings);
-  EXPECT_NEAR(random_sum / nr, 15.0, 4 * 30.0 / std::sqrt(12.0 * nr));
+  EXPECT_NEAR(random_sum / nr, 0.5, 4 * 1.0 / std::sqrt(12.0 * nr));
 }
 
 TEST(LaserSimulator, NoReturnReadsExactlyMaxRange) {

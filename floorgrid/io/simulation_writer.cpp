@@ -1,0 +1,73 @@
+#include "floorgrid/io/simulation_writer.hpp"
+
+#include "floorgrid/core/error.hpp"
+#include "floorgrid/evaluation/overlay.hpp"
+#include "floorgrid/io/atomic_file.hpp"
+#include "floorgrid/io/carmen_writer.hpp"
+#include "floorgrid/io/dataset_manifest.hpp"
+#include "floorgrid/io/dxf_writer.hpp"
+#include "floorgrid/io/image_io.hpp"
+#include "floorgrid/io/map_io.hpp"
+#include "floorgrid/io/pairs_csv.hpp"
+#include "floorgrid/io/truth_json.hpp"
+#include "floorgrid/maps/layer_filter.hpp"
+
+namespace floorgrid::io {
+
+SimulationFiles write_simulated_dataset(const SimulatedDataset& d,
+                                        const std::filesystem::path& folder, bool preview) {
+  prepare_output_folder(folder);
+  SimulationFiles out{folder, {}};
+  const auto add = [&](const std::filesystem::path& p) {
+    out.files.push_back(p);
+    return p;
+  };
+
+  DxfWriteOptions dxf;
+  dxf.header_units = d.preset.header_units;
+  dxf.units_per_metre = d.drawing_units_per_metre;
+  write_dxf(d.plan, add(folder / "floorplan.dxf"), dxf);
+
+  MapWriteOptions map;
+  map.mode = MapMode::trinary;
+  const auto image = write_map(d.gridmap, folder / "gridmap.yaml", map);
+  add(folder / "gridmap.yaml");
+  add(image);
+
+  write_carmen(d.log, add(folder / "log.carmen"));
+  write_pairs_csv(d.manual_pairs, add(folder / "manual_pairs.csv"));
+  write_file_atomically(add(folder / "truth.json"), simulation_truth_json(d).dump(1) + "\n");
+
+  DatasetManifest manifest;
+  manifest.manifest_path = folder / "dataset.yaml";
+  manifest.name = d.preset.name + " seed " + std::to_string(d.seed);
+  manifest.floorplan = folder / "floorplan.dxf";
+  manifest.floorplan_units = "auto";
+  manifest.floorplan_scale.reset();  // auto: the true scale is only in truth.json
+  manifest.floorplan_layers = {"WALLS", "RACKS"};
+  manifest.gridmap = folder / "gridmap.yaml";
+  manifest.log = folder / "log.carmen";
+  manifest.initial_pose = InitialPoses{d.start_in_plan, d.start_in_grid};
+  manifest.truth.warp = folder / "truth.json";
+  manifest.truth.manual_pairs = folder / "manual_pairs.csv";
+  write_manifest(manifest);
+  add(manifest.manifest_path);
+
+  if (preview) {
+    RgbImage picture = grid_picture(d.gridmap);
+    const PlanTruth truth = d.truth();
+    Eigen::Matrix2Xd path(2, static_cast<Eigen::Index>(d.true_trajectory.size()));
+    for (std::size_t i = 0; i < d.true_trajectory.size(); ++i) {
+      path.col(static_cast<Eigen::Index>(i)) =
+          truth.warp().world_to_grid(d.true_trajectory[i].pose.translation());
+    }
+    draw_points(picture, d.gridmap.geometry(), path, {40, 160, 40});
+    draw_plan(picture, d.gridmap.geometry(), filter_layers(d.plan, {{"WALLS", "RACKS"}, {}}),
+              [&](const Eigen::Vector2d& p) { return truth.plan_to_grid(p); }, {220, 30, 30});
+    draw_points(picture, d.gridmap.geometry(), d.manual_pairs.points_in_grid, {30, 60, 230}, 2);
+    write_png_rgb(add(folder / "preview.png"), picture.width, picture.height, picture.rgb);
+  }
+  return out;
+}
+
+}  // namespace floorgrid::io

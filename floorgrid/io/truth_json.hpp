@@ -1,0 +1,25 @@
+#pragma once
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "floorgrid/simulation/plan_truth.hpp"
+#include "floorgrid/simulation/simulator.hpp"
+
+namespace floorgrid::io {
+
+/// truth.json of a synthetic dataset: format "floorgrid-simulation-truth", the warp's
+/// parameters, the plan's scale and units, the preset's parameters, the run's statistics and
+/// the true trajectory (world frame, and in plan and grid frames).
+nlohmann::json simulation_truth_json(const SimulatedDataset& dataset);
+
+/// Reads the exact plan -> grid mapping from a truth.json. InputError naming the file and the
+/// field for a missing or malformed one.
+PlanTruth read_plan_truth(const std::filesystem::path& path);
+
+/// The warp parameters as JSON, and back (`where` names the file for errors).
+nlohmann::json warp_json(const WarpParams& warp);
+/// Parses warp_json's output; InputError naming `where` and the field otherwise.
+WarpParams warp_from_json(const nlohmann::json& j, const std::string& where);
+
+}  // namespace floorgrid::io

@@ -1,0 +1,164 @@
+// `floorgrid simulate` end to end: files, determinism, and other readers of what it writes.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "floorgrid/io/carmen_log.hpp"
+#include "floorgrid/io/dataset_manifest.hpp"
+#include "floorgrid/io/dxf_reader.hpp"
+#include "floorgrid/io/image_io.hpp"
+#include "floorgrid/io/map_io.hpp"
+#include "floorgrid/io/pairs_csv.hpp"
+#include "floorgrid/io/truth_json.hpp"
+#include "floorgrid/simulation/simulator.hpp"
+#include "tests/support/test_data.hpp"
+
+namespace floorgrid {
+namespace {
+
+namespace fs = std::filesystem;
+using test::read_file;
+using test::run_command;
+using test::run_floorgrid;
+using test::TempDir;
+
+std::string quoted(const fs::path& p) {
+  std::string out = "'";
+  out += p.string();
+  out += '\'';
+  return out;
+}
+
+void simulate_to(const std::string& preset, int seed, const fs::path& out) {
+  const auto run = run_floorgrid("simulate --preset " + preset + " --seed " + std::to_string(seed) +
+                                 " --out " + quoted(out) + " --preview");
+  ASSERT_EQ(run.status, 0) << run.err;
+}
+
+TEST(SimulateCommand, SameSeedSameBytesOtherSeedOtherBuilding) {
+  TempDir dir;
+  simulate_to("office", 7, dir / "a");
+  simulate_to("office", 7, dir / "b");
+  simulate_to("office", 8, dir / "c");
+  const std::vector<std::string> files = {"floorplan.dxf",    "gridmap.yaml", "gridmap.pgm",
+                                          "log.carmen",       "dataset.yaml", "truth.json",
+                                          "manual_pairs.csv", "preview.png"};
+  for (const auto& f : files) {
+    ASSERT_TRUE(fs::exists(dir / "a" / f)) << f;
+    EXPECT_EQ(read_file(dir / "a" / f), read_file(dir / "b" / f)) << f << " differs between runs";
+  }
+  for (const auto& f : {"floorplan.dxf", "log.carmen", "gridmap.pgm", "truth.json"}) {
+    EXPECT_NE(read_file(dir / "a" / f), read_file(dir / "c" / f)) << f << " same for two seeds";
+  }
+  // Nothing else, and no temporary file left behind.
+  std::size_t count = 0;
+  for (const auto& entry : fs::directory_iterator(dir / "a")) {
+    ++count;
+    EXPECT_EQ(entry.path().string().find(".tmp"), std::string::npos) << entry.path();
+  }
+  EXPECT_EQ(count, files.size());
+}
+
+TEST(SimulateCommand, WrittenFilesReadBackExactly) {
+  TempDir dir;
+  simulate_to("office-inches", 3, dir.path());
+  const SimulatedDataset d = simulate("office-inches", 3);
+
+  // The log: every pose, range and timestamp as simulated.
+  const RobotLog log = io::read_carmen(dir / "log.carmen");
+  ASSERT_EQ(log.scans.size(), d.log.scans.size());
+  ASSERT_EQ(log.odometry.size(), d.log.odometry.size());
+  for (std::size_t i = 0; i < log.scans.size(); ++i) {
+    const LaserScan& a = log.scans[i];
+    const LaserScan& b = d.log.scans[i];
+    ASSERT_EQ(a.type, "FLASER");
+    ASSERT_EQ(a.ranges, b.ranges) << "scan " << i;
+    ASSERT_EQ(a.timestamp, b.timestamp);
+    ASSERT_EQ(a.robot_pose.x, b.robot_pose.x);
+    ASSERT_EQ(a.robot_pose.theta, b.robot_pose.theta);
+    ASSERT_EQ(a.laser_pose.y, b.laser_pose.y);
+    ASSERT_NEAR(a.angle_increment, b.angle_increment, 1e-15);
+    ASSERT_EQ(a.max_range, b.max_range);
+  }
+  for (std::size_t i = 0; i < log.odometry.size(); ++i) {
+    ASSERT_EQ(log.odometry[i].pose.x, d.log.odometry[i].pose.x);
+    ASSERT_EQ(log.odometry[i].timestamp, d.log.odometry[i].timestamp);
+  }
+
+  // The plan: inches under a header saying mm, found out by the reader.
+  const io::DxfFloorplan dxf = io::read_dxf(dir / "floorplan.dxf");
+  EXPECT_EQ(dxf.report.header_units, "mm");
+  EXPECT_EQ(dxf.report.units_used, "in");
+  EXPECT_FALSE(dxf.report.warnings.empty());
+  ASSERT_EQ(dxf.plan.segments().size(), d.plan.segments().size());
+  for (std::size_t i = 0; i < d.plan.segments().size(); ++i) {
+    ASSERT_LT((dxf.plan.segments()[i].a - d.plan.segments()[i].a).norm(), 1e-9);
+  }
+  EXPECT_EQ(dxf.plan.arcs().size(), d.plan.arcs().size());
+
+  // The gridmap, the manual pairs and the truth.
+  const io::LoadedMap map = io::read_map_yaml(dir / "gridmap.yaml");
+  EXPECT_EQ(map.grid.states(), d.gridmap.states());
+  EXPECT_EQ(map.grid.geometry().origin.x, d.gridmap.geometry().origin.x);
+  const ReferencePairs pairs = io::read_pairs_csv(dir / "manual_pairs.csv");
+  EXPECT_EQ(pairs.points_in_grid, d.manual_pairs.points_in_grid);
+  const PlanTruth truth = io::read_plan_truth(dir / "truth.json");
+  const Eigen::Vector2d p = d.plan.segments()[5].a;
+  EXPECT_EQ(truth.plan_to_grid(p), d.truth().plan_to_grid(p));
+
+  // The manifest: scale and units left to be found, both starts given, truth referenced.
+  const io::DatasetManifest m = io::read_manifest(dir.path());
+  EXPECT_FALSE(m.floorplan_scale.has_value());
+  EXPECT_EQ(m.floorplan_units, "auto");
+  ASSERT_TRUE(m.initial_pose.has_value());
+  EXPECT_EQ(m.initial_pose->grid.x, d.start_in_grid.x);
+  EXPECT_TRUE(m.truth.warp.has_value());
+  EXPECT_TRUE(m.truth.manual_pairs.has_value());
+
+  // The preview: one pixel per gridmap cell.
+  const io::GreyImage preview = io::read_grey_image(dir / "preview.png");
+  EXPECT_EQ(preview.width, d.gridmap.width());
+  EXPECT_EQ(preview.height, d.gridmap.height());
+  EXPECT_EQ(run_floorgrid("info " + quoted(dir.path())).status, 0);
+}
+
+TEST(SimulateCommand, WarehousePlanHasRacksAndDoorsOnTheirLayers) {
+  TempDir dir;
+  simulate_to("warehouse", 1, dir.path());
+  const io::DxfFloorplan dxf = io::read_dxf(dir / "floorplan.dxf");
+  EXPECT_EQ(dxf.report.units_used, "m");
+  EXPECT_GT(dxf.report.entities_by_layer.at("RACKS").at("LINE"), 20u);
+  EXPECT_GT(dxf.report.entities_by_layer.at("DOORS").at("ARC"), 2u);
+  EXPECT_GT(dxf.report.entities_by_layer.at("WALLS").at("LINE"), 10u);
+  EXPECT_NEAR(dxf.plan.bounds().sizes().x(), 100.0, 6.0);
+}
+
+TEST(SimulateCommand, MrptCarmen2RawlogConvertsTheLog) {
+  if (run_command("command -v carmen2rawlog").status != 0) {
+    GTEST_SKIP() << "MRPT's carmen2rawlog is not installed (Debian mrpt-apps): smoke test skipped";
+  }
+  TempDir dir;
+  simulate_to("office", 2, dir.path());
+  const auto convert = run_command("carmen2rawlog -q -w -i " + quoted(dir / "log.carmen") + " -o " +
+                                   quoted(dir / "log.rawlog"));
+  ASSERT_EQ(convert.status, 0) << convert.err;
+  const auto info = run_command("rawlog-edit --info -i " + quoted(dir / "log.rawlog"));
+  ASSERT_EQ(info.status, 0) << info.err;
+  const long scans = std::stol(run_command("grep -c '^FLASER ' " + quoted(dir / "log.carmen")).out);
+  EXPECT_NE(info.out.find("FLASER /   " + std::to_string(scans)), std::string::npos) << info.out;
+}
+
+TEST(SimulateCommand, BadArgumentsExitWithTwo) {
+  TempDir dir;
+  const auto preset = run_floorgrid("simulate --preset castle --out " + quoted(dir / "x"));
+  EXPECT_EQ(preset.status, 2);
+  EXPECT_NE(preset.err.find("castle"), std::string::npos) << preset.err;
+  EXPECT_EQ(run_floorgrid("simulate --preset office").status, 2);  // no --out
+  test::write_file(dir / "file", "x");
+  const auto blocked = run_floorgrid("simulate --out " + quoted(dir / "file" / "sub"));
+  EXPECT_EQ(blocked.status, 2);
+  EXPECT_NE(blocked.err.find("file"), std::string::npos) << blocked.err;
+}
+
+}  // namespace
+}  // namespace floorgrid
