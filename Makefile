@@ -21,14 +21,15 @@ build: configure
 
 DATA ?= ../shared/data
 
-# For now the main job is `floorgrid info` on real files; it becomes the full pipeline once the
-# simulator and the aligner exist.
+# For now the main job is the simulated default building and `floorgrid info` on it and on real
+# files; it becomes the full pipeline once the aligner exists.
 demo: build
+	./$(BUILD_DIR)/floorgrid simulate --preset office --seed 1 --out $(DEMO_OUT) --preview
+	./$(BUILD_DIR)/floorgrid info $(DEMO_OUT)
 	@if [ -d "$(DATA)" ]; then \
-	  ./$(BUILD_DIR)/floorgrid info $(DATA)/bonn/GMap/GMap.yaml && \
-	  ./$(BUILD_DIR)/floorgrid info $(DATA)/dxf/house_floorplan_r2004.dxf && \
-	  ./$(BUILD_DIR)/floorgrid info $(DATA)/fr079/freiburg-079-corrected.log.gz; \
-	else echo "demo: $(DATA) is missing: nothing to show yet"; fi
+	  ./$(BUILD_DIR)/floorgrid info $(DATA)/bonn/GMap/GMap.yaml; \
+	else echo "demo: $(DATA) is missing: no real files to show"; fi
+	@echo "demo: results in $(DEMO_OUT)/ (preview.png shows the plan drawn on the gridmap)"
 
 test: build
 	ctest --test-dir $(BUILD_DIR) --output-on-failure -j $(JOBS)
