@@ -1,0 +1,96 @@
+#include "floorgrid/mapping/global_transform.hpp"
+
+#include "floorgrid/core/error.hpp"
+#include "floorgrid/mapping/model_file.hpp"
+
+namespace floorgrid {
+
+std::string global_transform_model_name(TransformKind kind) {
+  switch (kind) {
+    case TransformKind::rigid:
+      return "gt-rigid";
+    case TransformKind::affine:
+      return "gt-affine";
+    case TransformKind::similarity:
+      break;
+  }
+  return "gt";
+}
+
+GlobalTransformMapping::GlobalTransformMapping(MappingCommonOptions common, RansacOptions ransac)
+    : PointMapping(std::move(common)), ransac_(ransac) {
+  ransac_.seed = this->common().seed;
+}
+
+std::string GlobalTransformMapping::name() const {
+  return global_transform_model_name(ransac_.kind);
+}
+
+std::size_t GlobalTransformMapping::min_pairs() const {
+  return static_cast<std::size_t>(minimal_sample_size(ransac_.kind));
+}
+
+void GlobalTransformMapping::set_transform(const Eigen::Matrix3d& T) {
+  T_grid_plan_ = T;
+  T_plan_grid_ = T.inverse();
+}
+
+void GlobalTransformMapping::fit_model(const ReferencePairs& pairs, FitSummary& summary) {
+  const RansacResult result = ransac_transform(pairs, ransac_);
+  if (!result.ok)
+    throw InputError("no transform fits the pairs: " + result.message, {}, 0, "pairs");
+  set_transform(result.estimate.T_grid_plan);
+  summary.inliers = result.inlier_count;
+  summary.rms_m = result.estimate.rms;
+  summary.details = {{"kind", transform_kind_name(ransac_.kind)},
+                     {"scale", result.estimate.scale},
+                     {"reflected", result.estimate.reflected},
+                     {"iterations", result.iterations},
+                     {"refit_passes", result.refit_passes},
+                     {"inlier_threshold_m", ransac_.inlier_threshold},
+                     {"inlier_fraction", double(result.inlier_count) / double(pairs.size())}};
+  if (!result.message.empty())
+    summary.warnings.push_back(result.message);
+}
+
+Eigen::Vector2d GlobalTransformMapping::forward(const Eigen::Vector2d& p) const {
+  return T_grid_plan_.topLeftCorner<2, 2>() * p + T_grid_plan_.topRightCorner<2, 1>();
+}
+
+Eigen::Matrix2Xd GlobalTransformMapping::forward_batch(
+    const Eigen::Ref<const Eigen::Matrix2Xd>& p) const {
+  return (T_grid_plan_.topLeftCorner<2, 2>() * p).colwise() + T_grid_plan_.topRightCorner<2, 1>();
+}
+
+Eigen::Matrix2d GlobalTransformMapping::jacobian(const Eigen::Vector2d&) const {
+  return T_grid_plan_.topLeftCorner<2, 2>();
+}
+
+InverseMapping GlobalTransformMapping::inverse(const Eigen::Vector2d& g) const {
+  InverseMapping m;
+  m.point = T_plan_grid_.topLeftCorner<2, 2>() * g + T_plan_grid_.topRightCorner<2, 1>();
+  m.invertible = m.point.allFinite();
+  m.residual = (forward(m.point) - g).norm();
+  return m;
+}
+
+nlohmann::json GlobalTransformMapping::parameters() const {
+  return {{"kind", transform_kind_name(ransac_.kind)},
+          {"T_grid_plan", model_json::matrix(T_grid_plan_)},
+          {"ransac",
+           {{"inlier_threshold_m", ransac_.inlier_threshold},
+            {"confidence", ransac_.confidence},
+            {"max_iterations", ransac_.max_iterations}}}};
+}
+
+void GlobalTransformMapping::load_parameters(const nlohmann::json& j, const std::string& where) {
+  const Eigen::Matrix3d T =
+      model_json::matrix(model_json::member(j, "T_grid_plan", where, "parameters."), where,
+                         "parameters.T_grid_plan", 3, 3);
+  if (std::abs(T.topLeftCorner<2, 2>().determinant()) < 1e-300) {
+    throw InputError("the transform is singular", where, 0, "parameters.T_grid_plan");
+  }
+  set_transform(T);
+}
+
+}  // namespace floorgrid

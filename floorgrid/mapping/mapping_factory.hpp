@@ -1,0 +1,29 @@
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "floorgrid/mapping/linear_combination.hpp"
+#include "floorgrid/mapping/local_transforms.hpp"
+#include "floorgrid/mapping/point_mapping.hpp"
+#include "floorgrid/mapping/ransac.hpp"
+
+namespace floorgrid {
+
+/// Every model's options, defaults in one place; `model` picks the model.
+struct MappingOptions {
+  std::string model = "auto";   ///< lc, gt, gt-rigid, gt-affine, ct, gp, gpgt, dt, tps, auto
+  MappingCommonOptions common;  ///< shared: reduction budget, extrapolation distance, seed
+  RansacOptions ransac;         ///< gt variants (and gpgt's global part); kind set by model
+  LinearCombinationOptions lc;  ///< lc
+  LocalTransformsOptions ct;    ///< ct
+};
+
+/// The model names make_mapping knows, in the SPEC's order.
+const std::vector<std::string>& mapping_model_names();
+
+/// A new, unfitted model. InputError (field "model") for an unknown name.
+std::unique_ptr<PointMapping> make_mapping(const MappingOptions& options);
+
+}  // namespace floorgrid

@@ -1,0 +1,215 @@
+#include "floorgrid/mapping/point_mapping.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "floorgrid/core/error.hpp"
+#include "floorgrid/geometry/transform_estimation.hpp"
+
+namespace floorgrid {
+
+std::string to_string(MapFlag flag) {
+  switch (flag) {
+    case MapFlag::extrapolated:
+      return "extrapolated";
+    case MapFlag::outside_hull:
+      return "outside_hull";
+    case MapFlag::not_invertible:
+      return "not_invertible";
+    case MapFlag::ok:
+      break;
+  }
+  return "ok";
+}
+
+PointMapping::PointMapping(MappingCommonOptions common) : common_(std::move(common)) {}
+PointMapping::~PointMapping() = default;
+
+FitSummary PointMapping::fit(const ReferencePairs& given) {
+  const auto start = std::chrono::steady_clock::now();
+  validate_pairs(given);
+  FitSummary summary;
+  summary.model = name();
+  summary.pairs_given = static_cast<std::size_t>(given.size());
+  DuplicateMerge merge;
+  ReferencePairs pairs = merge_duplicates(given, &merge);
+  summary.pairs_merged = merge.merged;
+  summary.pairs_conflicting = merge.conflicting;
+  if (merge.merged > 0) {
+    summary.warnings.push_back(std::to_string(merge.merged) +
+                               " duplicate plan points merged (grid points averaged)");
+  }
+  if (merge.conflicting > 0) {
+    summary.warnings.push_back(std::to_string(merge.conflicting) +
+                               " duplicate plan points had grid points up to " +
+                               std::to_string(merge.largest_conflict) + " m apart");
+  }
+  const std::size_t distinct = static_cast<std::size_t>(pairs.size());
+  if (distinct < min_pairs()) {
+    throw InputError("model " + name() + " needs at least " + std::to_string(min_pairs()) +
+                         " distinct pairs (got " + std::to_string(distinct) + ")",
+                     {}, 0, "pairs");
+  }
+  if (needs_non_collinear() && plan_points_collinear(pairs)) {
+    throw InputError("model " + name() + " needs plan points that are not all on one line", {}, 0,
+                     "pairs");
+  }
+  if (reduces_pairs()) {
+    ReductionOptions reduction = common_.reduction;
+    reduction.budget = reduction_budget();
+    pairs = reduce_pairs(pairs, reduction, &summary.reduction);
+  }
+  summary.pairs_used = static_cast<std::size_t>(pairs.size());
+  build_support(pairs);
+  fit_model(pairs, summary);
+  summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  summary_ = summary;
+  fitted_ = true;
+  return summary_;
+}
+
+void PointMapping::build_support(const ReferencePairs& pairs) {
+  ReductionOptions budget;
+  budget.budget = common_.support_budget;
+  support_ = reduce_pairs(pairs, budget);
+  support_plan_index_ = PointIndex2D(support_.points_in_plan);
+  support_grid_index_ = PointIndex2D(support_.points_in_grid);
+  plan_hull_ = convex_hull(support_.points_in_plan);
+  grid_hull_ = convex_hull(support_.points_in_grid);
+  extent_ = std::max(plan_extent(support_), 1e-9);
+  try {
+    TransformEstimationOptions similarity;
+    similarity.kind = TransformKind::similarity;
+    T_support_ = estimate_transform(support_.points_in_plan, support_.points_in_grid,
+                                    support_.weights, similarity)
+                     .T_grid_plan;
+  } catch (const InputError&) {
+    T_support_ = Eigen::Matrix3d::Identity();  // a single distinct point: no similarity
+  }
+}
+
+Eigen::Matrix2Xd PointMapping::forward_batch(
+    const Eigen::Ref<const Eigen::Matrix2Xd>& points) const {
+  Eigen::Matrix2Xd out(2, points.cols());
+  for (Eigen::Index i = 0; i < points.cols(); ++i)
+    out.col(i) = forward(points.col(i));
+  return out;
+}
+
+Eigen::Matrix2d PointMapping::jacobian(const Eigen::Vector2d& p) const {
+  const double h = 1e-6 * extent_;
+  Eigen::Matrix2d j;
+  for (int d = 0; d < 2; ++d) {
+    Eigen::Vector2d step = Eigen::Vector2d::Zero();
+    step[d] = h;
+    j.col(d) = (forward(p + step) - forward(p - step)) / (2.0 * h);
+  }
+  return j;
+}
+
+InverseMapping PointMapping::inverse(const Eigen::Vector2d& target) const {
+  InverseMapping result;
+  const Eigen::Matrix3d T_plan_grid = T_support_.inverse();
+  Eigen::Vector2d x =
+      T_plan_grid.topLeftCorner<2, 2>() * target + T_plan_grid.topRightCorner<2, 1>();
+  const double tolerance = common_.inverse_tolerance * extent_;
+  const double orientation = T_support_.topLeftCorner<2, 2>().determinant();
+  Eigen::Vector2d residual = forward(x) - target;
+  for (int k = 0; k < common_.inverse_max_iterations; ++k) {
+    result.iterations = k;
+    if (residual.norm() <= tolerance)
+      break;
+    const Eigen::Matrix2d j = jacobian(x);
+    const double det = j.determinant();
+    if (!(std::abs(det) > 1e-12) || !std::isfinite(det))
+      break;
+    const Eigen::Vector2d step = j.inverse() * residual;
+    // Damped Newton: halve the step until the residual falls.
+    double scale = 1.0;
+    Eigen::Vector2d next = x - step, next_residual = forward(next) - target;
+    while (next_residual.norm() >= residual.norm() && scale > 1e-6) {
+      scale *= 0.5;
+      next = x - scale * step;
+      next_residual = forward(next) - target;
+    }
+    if (scale <= 1e-6)
+      break;
+    x = next;
+    residual = next_residual;
+    result.iterations = k + 1;
+  }
+  result.point = x;
+  result.residual = residual.norm();
+  // Invertible: converged where the mapping keeps the similarity's orientation (no fold).
+  result.invertible = result.residual <= tolerance && jacobian(x).determinant() * orientation > 0.0;
+  return result;
+}
+
+std::optional<double> PointMapping::predictive_std(const Eigen::Vector2d&) const {
+  return std::nullopt;
+}
+
+Pose2 PointMapping::forward_pose(const Pose2& pose) const {
+  const Eigen::Vector2d p = forward(pose.translation());
+  const Eigen::Vector2d heading =
+      jacobian(pose.translation()) * Eigen::Vector2d(std::cos(pose.theta), std::sin(pose.theta));
+  return {p.x(), p.y(), std::atan2(heading.y(), heading.x())};
+}
+
+std::optional<Pose2> PointMapping::inverse_pose(const Pose2& pose) const {
+  const InverseMapping inv = inverse(pose.translation());
+  if (!inv.invertible)
+    return std::nullopt;
+  const Eigen::Vector2d heading =
+      jacobian(inv.point).inverse() * Eigen::Vector2d(std::cos(pose.theta), std::sin(pose.theta));
+  return Pose2{inv.point.x(), inv.point.y(), std::atan2(heading.y(), heading.x())};
+}
+
+double PointMapping::nearest_pair_in_plan(const Eigen::Vector2d& p) const {
+  return support_plan_index_.nearest(p).distance;
+}
+
+double PointMapping::nearest_pair_in_grid(const Eigen::Vector2d& p) const {
+  return support_grid_index_.nearest(p).distance;
+}
+
+bool PointMapping::inside_plan_hull(const Eigen::Vector2d& p) const {
+  return inside_convex_polygon(plan_hull_, p, 1e-9 * extent_);
+}
+
+bool PointMapping::inside_grid_hull(const Eigen::Vector2d& p) const {
+  return inside_convex_polygon(grid_hull_, p, 1e-9 * extent_);
+}
+
+MappedPoint PointMapping::map_forward(const Eigen::Vector2d& p) const {
+  MappedPoint m;
+  m.point = forward(p);
+  m.std_m = predictive_std(p);
+  m.nearest_pair_m = nearest_pair_in_plan(p);
+  m.flag = !inside_plan_hull(p)                                ? MapFlag::outside_hull
+           : m.nearest_pair_m > common_.extrapolation_distance ? MapFlag::extrapolated
+                                                               : MapFlag::ok;
+  if (!m.point.allFinite())
+    m.flag = MapFlag::not_invertible;
+  return m;
+}
+
+MappedPoint PointMapping::map_inverse(const Eigen::Vector2d& g) const {
+  MappedPoint m;
+  const InverseMapping inv = inverse(g);
+  m.nearest_pair_m = nearest_pair_in_grid(g);
+  if (!inv.invertible) {
+    m.point = Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN());
+    m.flag = MapFlag::not_invertible;
+    return m;
+  }
+  m.point = inv.point;
+  m.std_m = predictive_std(inv.point);
+  m.flag = !inside_grid_hull(g)                                ? MapFlag::outside_hull
+           : m.nearest_pair_m > common_.extrapolation_distance ? MapFlag::extrapolated
+                                                               : MapFlag::ok;
+  return m;
+}
+
+}  // namespace floorgrid
