@@ -8,7 +8,7 @@
 namespace floorgrid {
 
 const std::vector<std::string>& mapping_model_names() {
-  static const std::vector<std::string> names = {"lc", "gt", "gt-rigid", "gt-affine", "ct"};
+  static const std::vector<std::string> names = {"lc", "gt", "gt-rigid", "gt-affine", "ct", "auto"};
   return names;
 }
 
@@ -25,6 +25,19 @@ std::unique_ptr<PointMapping> make_mapping(const MappingOptions& o) {
     return std::make_unique<LinearCombinationMapping>(o.common, o.lc);
   if (m == "ct")
     return std::make_unique<LocalTransformsMapping>(o.common, o.ct);
+  if (m == "auto") {
+    // Only the candidates this build knows (the default list names every model).
+    MappingOptions a = o;
+    std::vector<std::string> known;
+    for (const auto& c : a.auto_select.candidates) {
+      const auto& names = mapping_model_names();
+      if (c != "auto" && std::find(names.begin(), names.end(), c) != names.end()) {
+        known.push_back(c);
+      }
+    }
+    a.auto_select.candidates = known;
+    return std::make_unique<AutoMapping>(a);
+  }
   std::string known;
   for (const auto& n : mapping_model_names())
     known += (known.empty() ? "" : ", ") + n;

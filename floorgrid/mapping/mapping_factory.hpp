@@ -6,6 +6,7 @@
 
 #include "floorgrid/mapping/linear_combination.hpp"
 #include "floorgrid/mapping/local_transforms.hpp"
+#include "floorgrid/mapping/model_selection.hpp"
 #include "floorgrid/mapping/point_mapping.hpp"
 #include "floorgrid/mapping/ransac.hpp"
 
@@ -18,6 +19,7 @@ struct MappingOptions {
   RansacOptions ransac;         ///< gt variants (and gpgt's global part); kind set by model
   LinearCombinationOptions lc;  ///< lc
   LocalTransformsOptions ct;    ///< ct
+  AutoOptions auto_select;      ///< auto: candidates and cross-validation
 };
 
 /// The model names make_mapping knows, in the SPEC's order.

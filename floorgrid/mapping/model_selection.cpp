@@ -1,0 +1,195 @@
+#include "floorgrid/mapping/model_selection.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "floorgrid/core/error.hpp"
+#include "floorgrid/core/random.hpp"
+#include "floorgrid/mapping/mapping_factory.hpp"
+#include "floorgrid/mapping/model_file.hpp"
+
+namespace floorgrid {
+
+namespace {
+double median_of(std::vector<double> v) {
+  if (v.empty())
+    return std::numeric_limits<double>::infinity();
+  const std::size_t mid = v.size() / 2;
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(mid), v.end());
+  return v[mid];
+}
+}  // namespace
+
+CrossValidationResult cross_validate(const MappingOptions& options, const ReferencePairs& given,
+                                     const CrossValidationOptions& cv) {
+  if (cv.folds < 2)
+    throw InputError("must be >= 2", {}, 0, "cv.folds");
+  validate_pairs(given);
+  ReductionOptions budget;
+  budget.budget = std::max<std::size_t>(cv.max_pairs, 3);
+  const ReferencePairs pairs = reduce_pairs(merge_duplicates(given), budget);
+  const auto n = static_cast<std::size_t>(pairs.size());
+  CrossValidationResult result;
+  result.pairs = n;
+  // Deal the pairs into folds: a seeded shuffle, then round robin.
+  std::vector<Eigen::Index> order(n);
+  for (std::size_t i = 0; i < n; ++i)
+    order[i] = static_cast<Eigen::Index>(i);
+  Random random(options.common.seed);
+  for (std::size_t i = n; i > 1; --i) {
+    std::swap(order[i - 1],
+              order[static_cast<std::size_t>(random.integer(0, static_cast<std::int64_t>(i) - 1))]);
+  }
+  const std::size_t folds = std::min<std::size_t>(static_cast<std::size_t>(cv.folds), n);
+  std::vector<double> errors;
+  for (std::size_t f = 0; f < folds; ++f) {
+    std::vector<Eigen::Index> train, test;
+    for (std::size_t i = 0; i < n; ++i)
+      (i % folds == f ? test : train).push_back(order[i]);
+    auto model = make_mapping(options);
+    try {
+      model->fit(select_pairs(pairs, train));
+    } catch (const InputError&) {
+      ++result.failed_folds;
+      continue;
+    }
+    double sum = 0.0;
+    for (const Eigen::Index i : test) {
+      const double e =
+          (model->forward(pairs.points_in_plan.col(i)) - pairs.points_in_grid.col(i)).norm();
+      errors.push_back(std::isfinite(e) ? e : std::numeric_limits<double>::infinity());
+      sum += errors.back();
+    }
+    result.fold_errors.push_back(sum / static_cast<double>(test.size()));
+  }
+  if (errors.empty()) {
+    result.mean_error_m = result.median_error_m = std::numeric_limits<double>::infinity();
+    return result;
+  }
+  double sum = 0.0;
+  for (const double e : errors)
+    sum += e;
+  result.mean_error_m = sum / static_cast<double>(errors.size());
+  result.median_error_m = median_of(errors);
+  return result;
+}
+
+std::vector<double> leave_one_out_errors(const MappingOptions& options,
+                                         const ReferencePairs& pairs) {
+  std::vector<double> errors;
+  for (Eigen::Index left_out = 0; left_out < pairs.size(); ++left_out) {
+    std::vector<Eigen::Index> train;
+    for (Eigen::Index i = 0; i < pairs.size(); ++i) {
+      if (i != left_out)
+        train.push_back(i);
+    }
+    auto model = make_mapping(options);
+    try {
+      model->fit(select_pairs(pairs, train));
+      errors.push_back(
+          (model->forward(pairs.points_in_plan.col(left_out)) - pairs.points_in_grid.col(left_out))
+              .norm());
+    } catch (const InputError&) {
+      errors.push_back(std::numeric_limits<double>::infinity());
+    }
+  }
+  return errors;
+}
+
+AutoMapping::AutoMapping(const MappingOptions& options)
+    : PointMapping(options.common), options_(std::make_unique<MappingOptions>(options)) {
+  for (const auto& name : options_->auto_select.candidates) {
+    if (name == "auto")
+      throw InputError("auto cannot choose itself", {}, 0, "auto.candidates");
+    MappingOptions probe = *options_;
+    probe.model = name;
+    make_mapping(probe);  // throws for an unknown name
+  }
+  if (options_->auto_select.candidates.empty()) {
+    throw InputError("needs at least one candidate", {}, 0, "auto.candidates");
+  }
+}
+
+AutoMapping::~AutoMapping() = default;
+
+void AutoMapping::fit_model(const ReferencePairs& pairs, FitSummary& summary) {
+  table_.clear();
+  std::string best;
+  double best_error = std::numeric_limits<double>::infinity();
+  nlohmann::json table = nlohmann::json::object();
+  for (const auto& name : options_->auto_select.candidates) {
+    MappingOptions candidate = *options_;
+    candidate.model = name;
+    const CrossValidationResult cv = cross_validate(candidate, pairs, options_->auto_select.cv);
+    table_[name] = cv.mean_error_m;
+    table[name] = {
+        {"mean_error_m", std::isfinite(cv.mean_error_m) ? nlohmann::json(cv.mean_error_m)
+                                                        : nlohmann::json(nullptr)},
+        {"median_error_m", std::isfinite(cv.median_error_m) ? nlohmann::json(cv.median_error_m)
+                                                            : nlohmann::json(nullptr)},
+        {"failed_folds", cv.failed_folds}};
+    if (cv.mean_error_m < best_error) {
+      best_error = cv.mean_error_m;
+      best = name;
+    }
+  }
+  if (best.empty())
+    throw InputError("no candidate model could be fitted to the pairs", {}, 0, "pairs");
+  MappingOptions chosen = *options_;
+  chosen.model = best;
+  chosen_ = make_mapping(chosen);
+  const FitSummary inner = chosen_->fit(pairs);
+  chosen_->set_cv_error(best_error);
+  summary.rms_m = inner.rms_m;
+  summary.inliers = inner.inliers;
+  summary.pairs_used = inner.pairs_used;
+  summary.reduction = inner.reduction;
+  summary.cv_error_m = best_error;
+  summary.details = {{"chosen", best},
+                     {"folds", options_->auto_select.cv.folds},
+                     {"cv_table", table},
+                     {"chosen_details", inner.details}};
+  summary.warnings.insert(summary.warnings.end(), inner.warnings.begin(), inner.warnings.end());
+}
+
+Eigen::Vector2d AutoMapping::forward(const Eigen::Vector2d& p) const {
+  return chosen_->forward(p);
+}
+
+Eigen::Matrix2Xd AutoMapping::forward_batch(const Eigen::Ref<const Eigen::Matrix2Xd>& p) const {
+  return chosen_->forward_batch(p);
+}
+
+Eigen::Matrix2d AutoMapping::jacobian(const Eigen::Vector2d& p) const {
+  return chosen_->jacobian(p);
+}
+
+InverseMapping AutoMapping::inverse(const Eigen::Vector2d& g) const {
+  return chosen_->inverse(g);
+}
+
+std::optional<double> AutoMapping::predictive_std(const Eigen::Vector2d& p) const {
+  return chosen_->predictive_std(p);
+}
+
+nlohmann::json AutoMapping::parameters() const {
+  nlohmann::json table = nlohmann::json::object();
+  for (const auto& [name, error] : table_) {
+    table[name] = std::isfinite(error) ? nlohmann::json(error) : nlohmann::json(nullptr);
+  }
+  return {{"chosen", chosen_->name()}, {"cv_mean_error_m", table}, {"model", chosen_->to_json()}};
+}
+
+void AutoMapping::load_parameters(const nlohmann::json& j, const std::string& where) {
+  chosen_ = load_mapping(model_json::member(j, "model", where, "parameters."), where);
+  table_.clear();
+  if (j.contains("cv_mean_error_m") && j["cv_mean_error_m"].is_object()) {
+    for (const auto& [name, error] : j["cv_mean_error_m"].items()) {
+      table_[name] =
+          error.is_number() ? error.get<double>() : std::numeric_limits<double>::infinity();
+    }
+  }
+}
+
+}  // namespace floorgrid

@@ -1,0 +1,84 @@
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "floorgrid/mapping/point_mapping.hpp"
+
+namespace floorgrid {
+
+struct MappingOptions;
+
+/// How models are cross-validated.
+struct CrossValidationOptions {
+  int folds = 5;                 ///< k of k-fold, >= 2
+  std::size_t max_pairs = 3000;  ///< pairs binned down to this before the folds (cost bound)
+};
+
+/// The outcome of a k-fold cross-validation.
+struct CrossValidationResult {
+  double mean_error_m = 0.0;        ///< mean |model(plan) - grid| over all held-out pairs
+  double median_error_m = 0.0;      ///< median of the same
+  std::vector<double> fold_errors;  ///< mean error per fold, metres
+  std::size_t pairs = 0;            ///< pairs cross-validated (after binning)
+  std::size_t failed_folds = 0;     ///< folds whose training set the model refused
+};
+
+/// k-fold cross-validation of the model `options` names: pairs are merged, binned to
+/// max_pairs, dealt into k folds at random (seeded by options.common.seed); each fold is
+/// predicted by the model fitted on the others. A fold the model cannot be fitted on (too few
+/// pairs) counts as failed; when every fold fails the error is infinite.
+CrossValidationResult cross_validate(const MappingOptions& options, const ReferencePairs& pairs,
+                                     const CrossValidationOptions& cv = {});
+
+/// Leave-one-out errors: for each pair, the model fitted on all others predicts it (metres;
+/// infinite where the model cannot be fitted). For small hand-picked sets.
+std::vector<double> leave_one_out_errors(const MappingOptions& options,
+                                         const ReferencePairs& pairs);
+
+/// Options of the `auto` model.
+struct AutoOptions {
+  /// The models compared, cheapest first (ties go to the earlier one).
+  std::vector<std::string> candidates = {"gt", "gt-affine", "gpgt", "gp", "tps", "dt", "ct", "lc"};
+  CrossValidationOptions cv;  ///< how they are compared
+};
+
+/// `auto`: the candidate with the lowest k-fold cross-validated mean error, refitted on all
+/// pairs; the table of every candidate's error is kept in the fit's details and the model file.
+class AutoMapping : public PointMapping {
+ public:
+  /// An auto model choosing among `options.auto_select.candidates`, each built from `options`.
+  explicit AutoMapping(const MappingOptions& options);
+  ~AutoMapping() override;
+
+  std::string name() const override { return "auto"; }
+  std::size_t min_pairs() const override { return 2; }
+  bool needs_non_collinear() const override { return false; }
+  bool reduces_pairs() const override { return false; }
+
+  Eigen::Vector2d forward(const Eigen::Vector2d& point_in_plan) const override;
+  Eigen::Matrix2Xd forward_batch(
+      const Eigen::Ref<const Eigen::Matrix2Xd>& points_in_plan) const override;
+  Eigen::Matrix2d jacobian(const Eigen::Vector2d& point_in_plan) const override;
+  InverseMapping inverse(const Eigen::Vector2d& point_in_grid) const override;
+  std::optional<double> predictive_std(const Eigen::Vector2d& point_in_plan) const override;
+
+  /// The model chosen (after fit or load).
+  const PointMapping& chosen() const { return *chosen_; }
+  /// Cross-validated mean error per candidate, metres (infinite: could not be fitted).
+  const std::map<std::string, double>& table() const { return table_; }
+
+ protected:
+  void fit_model(const ReferencePairs& pairs, FitSummary& summary) override;
+  nlohmann::json parameters() const override;
+  void load_parameters(const nlohmann::json& parameters, const std::string& where) override;
+
+ private:
+  std::unique_ptr<MappingOptions> options_;
+  std::unique_ptr<PointMapping> chosen_;
+  std::map<std::string, double> table_;
+};
+
+}  // namespace floorgrid
