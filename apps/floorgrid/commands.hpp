@@ -9,5 +9,9 @@ namespace floorgrid::app {
 void add_info_command(CLI::App& root);
 /// `floorgrid simulate`.
 void add_simulate_command(CLI::App& root);
+/// `floorgrid fit`.
+void add_fit_command(CLI::App& root);
+/// `floorgrid map`.
+void add_map_command(CLI::App& root);
 
 }  // namespace floorgrid::app

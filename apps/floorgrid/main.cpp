@@ -18,6 +18,8 @@ int main(int argc, char** argv) {
   spdlog::set_pattern("%^%l%$: %v");
   floorgrid::app::add_info_command(root);
   floorgrid::app::add_simulate_command(root);
+  floorgrid::app::add_fit_command(root);
+  floorgrid::app::add_map_command(root);
 
   try {
     root.parse(argc, argv);

@@ -1,0 +1,98 @@
+// `floorgrid map --model FILE [--inverse] x,y[,theta] ...` or `--points IN.csv --out OUT.csv`.
+#include <fmt/format.h>
+
+#include <cmath>
+#include <limits>
+
+#include "apps/floorgrid/cli_util.hpp"
+#include "apps/floorgrid/commands.hpp"
+#include "floorgrid/core/error.hpp"
+#include "floorgrid/io/model_io.hpp"
+#include "floorgrid/io/points_csv.hpp"
+
+namespace floorgrid::app {
+
+namespace {
+
+/// Maps one point (and heading) in the model's pair units.
+io::MappedRow map_one(const PointMapping& model, const Eigen::Vector2d& point,
+                      std::optional<double> heading, bool inverse) {
+  const double unit = model.unit();
+  const Eigen::Vector2d p = point * unit;
+  io::MappedRow row;
+  row.mapped = inverse ? model.map_inverse(p) : model.map_forward(p);
+  if (row.mapped.flag != MapFlag::not_invertible) {
+    if (heading) {
+      if (inverse) {
+        const auto pose = model.inverse_pose({p.x(), p.y(), *heading});
+        if (pose)
+          row.heading = pose->theta;
+      } else {
+        row.heading = model.forward_pose({p.x(), p.y(), *heading}).theta;
+      }
+    }
+    row.mapped.point /= unit;
+  }
+  return row;
+}
+
+}  // namespace
+
+void add_map_command(CLI::App& root) {
+  auto* cmd =
+      root.add_subcommand("map", "Map points or poses through a model, plan to grid or back");
+  struct Args {
+    std::string model, points, out;
+    bool inverse = false;
+    std::vector<std::string> values;
+  };
+  auto args = std::make_shared<Args>();
+  cmd->add_option("--model", args->model, "model file written by `fit` or `align`")->required();
+  cmd->add_flag("--inverse", args->inverse, "map grid to plan instead of plan to grid");
+  cmd->add_option("--points", args->points, "CSV of points: header x,y or x,y,theta");
+  cmd->add_option("--out", args->out, "CSV to write with --points");
+  cmd->add_option("POINTS", args->values, "points x,y or poses x,y,theta (radians)");
+  cmd->callback([args] {
+    if (args->points.empty() == args->values.empty()) {
+      throw InputError("give either points on the command line or --points IN.csv --out OUT.csv",
+                       {}, 0, "--points");
+    }
+    if (!args->points.empty() && args->out.empty()) {
+      throw InputError("--points needs --out OUT.csv", {}, 0, "--out");
+    }
+    const auto model = io::read_model(args->model);
+    if (!args->points.empty()) {
+      const io::PointsTable table = io::read_points_csv(args->points);
+      std::vector<io::MappedRow> rows;
+      rows.reserve(static_cast<std::size_t>(table.points.cols()));
+      for (Eigen::Index i = 0; i < table.points.cols(); ++i) {
+        const std::optional<double> heading =
+            table.has_headings() ? std::optional<double>(table.headings[i]) : std::nullopt;
+        rows.push_back(map_one(*model, table.points.col(i), heading, args->inverse));
+      }
+      io::write_mapped_csv(rows, table.has_headings(), args->out);
+      fmt::print("mapped {} {} with {} ({}) to {}\n", rows.size(),
+                 table.has_headings() ? "poses" : "points", model->name(),
+                 args->inverse ? "grid -> plan" : "plan -> grid", args->out);
+      return;
+    }
+    for (const std::string& text : args->values) {
+      const auto v = parse_numbers(text, "POINTS", {2, 3});
+      const std::optional<double> heading =
+          v.size() == 3 ? std::optional<double>(v[2]) : std::nullopt;
+      const io::MappedRow row = map_one(*model, {v[0], v[1]}, heading, args->inverse);
+      if (row.mapped.flag == MapFlag::not_invertible) {
+        fmt::print("{} -> not_invertible\n", text);
+        continue;
+      }
+      std::string result = fmt::format("{:.6f},{:.6f}", row.mapped.point.x(), row.mapped.point.y());
+      if (row.heading)
+        result += fmt::format(",{:.6f}", *row.heading);
+      std::string std_text = row.mapped.std_m ? fmt::format("{:.4f} m", *row.mapped.std_m) : "n/a";
+      fmt::print("{} -> {}  std {}  nearest pair {:.3f} m  {}\n", text, result, std_text,
+                 row.mapped.nearest_pair_m, to_string(row.mapped.flag));
+    }
+  });
+}
+
+}  // namespace floorgrid::app

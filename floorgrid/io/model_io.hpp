@@ -1,0 +1,17 @@
+#pragma once
+
+#include <filesystem>
+#include <memory>
+
+#include "floorgrid/mapping/point_mapping.hpp"
+
+namespace floorgrid::io {
+
+/// Writes a fitted model's file (JSON, SPEC "Model file") atomically.
+void write_model(const PointMapping& mapping, const std::filesystem::path& path);
+
+/// Reads a model file; InputError naming the file and the field for a file that is not JSON,
+/// not a floorgrid model, of another version, of an unknown model, or malformed.
+std::unique_ptr<PointMapping> read_model(const std::filesystem::path& path);
+
+}  // namespace floorgrid::io
