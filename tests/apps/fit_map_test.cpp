@@ -1,0 +1,162 @@
+// `floorgrid fit` and `floorgrid map` end to end.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "floorgrid/core/random.hpp"
+#include "floorgrid/io/pairs_csv.hpp"
+#include "tests/support/test_data.hpp"
+
+namespace floorgrid {
+namespace {
+
+namespace fs = std::filesystem;
+using test::read_file;
+using test::run_floorgrid;
+using test::TempDir;
+using test::write_file;
+
+std::string quoted(const fs::path& p) {
+  std::string out = "'";
+  out += p.string();
+  out += '\'';
+  return out;
+}
+
+/// The truth: rotate by 0.5 rad, scale 1.1, shift (3, -2).
+Eigen::Vector2d truth(const Eigen::Vector2d& p) {
+  Eigen::Matrix2d R;
+  R << std::cos(0.5), -std::sin(0.5), std::sin(0.5), std::cos(0.5);
+  return 1.1 * R * p + Eigen::Vector2d(3.0, -2.0);
+}
+
+/// Pairs of the truth written in `unit`s (a pixel of 5 cm: unit 0.05).
+void write_pairs(const fs::path& path, double unit) {
+  Random r(5);
+  ReferencePairs pairs;
+  pairs.points_in_plan.resize(2, 60);
+  pairs.points_in_grid.resize(2, 60);
+  for (int i = 0; i < 60; ++i) {
+    const Eigen::Vector2d p(r.uniform(0, 30), r.uniform(0, 15));
+    pairs.points_in_plan.col(i) = p;
+    pairs.points_in_grid.col(i) = truth(p);
+  }
+  io::write_pairs_csv(pairs, path, unit);
+}
+
+TEST(FitAndMapCommands, FitThenMapPointsPosesAndCsv) {
+  TempDir dir;
+  write_pairs(dir / "pairs.csv", 1.0);
+  const auto fit = run_floorgrid("fit --pairs " + quoted(dir / "pairs.csv") +
+                                 " --model gt --cv 5 --out " + quoted(dir / "model.json"));
+  ASSERT_EQ(fit.status, 0) << fit.err;
+  EXPECT_NE(fit.out.find("inliers   60 of 60"), std::string::npos) << fit.out;
+  EXPECT_NE(fit.out.find("cv error"), std::string::npos) << fit.out;
+  const auto model = nlohmann::json::parse(read_file(dir / "model.json"));
+  EXPECT_EQ(model["format"], "floorgrid-model");
+  EXPECT_EQ(model["model"], "gt");
+  EXPECT_EQ(model["frames"]["from"], "plan");
+  EXPECT_EQ(model["parameters"]["T_grid_plan"].size(), 3u);
+  EXPECT_TRUE(model["fit"]["cv_error_m"].is_number());
+
+  const auto one = run_floorgrid("map --model " + quoted(dir / "model.json") + " 10,5 10,5,0.25");
+  ASSERT_EQ(one.status, 0) << one.err;
+  const Eigen::Vector2d g = truth({10.0, 5.0});
+  std::ostringstream expected;
+  expected.precision(6);
+  expected << std::fixed << g.x() << "," << g.y();
+  EXPECT_NE(one.out.find("10,5 -> " + expected.str()), std::string::npos) << one.out;
+  EXPECT_NE(one.out.find(expected.str() + "," + std::to_string(0.75).substr(0, 8)),
+            std::string::npos)
+      << one.out;  // the heading turns by the rotation
+
+  write_file(dir / "in.csv", "x,y,theta\n10,5,0.25\n# a comment\n100,100,0\n");
+  const auto csv = run_floorgrid("map --model " + quoted(dir / "model.json") + " --points " +
+                                 quoted(dir / "in.csv") + " --out " + quoted(dir / "out.csv"));
+  ASSERT_EQ(csv.status, 0) << csv.err;
+  std::istringstream lines(read_file(dir / "out.csv"));
+  std::string header, first, second;
+  std::getline(lines, header);
+  std::getline(lines, first);
+  std::getline(lines, second);
+  EXPECT_EQ(header, "x,y,theta,std_m,nearest_pair_m,flag");
+  double x = 0, y = 0, theta = 0;
+  ASSERT_EQ(std::sscanf(first.c_str(), "%lf,%lf,%lf", &x, &y, &theta), 3) << first;
+  EXPECT_NEAR(x, g.x(), 1e-9);
+  EXPECT_NEAR(y, g.y(), 1e-9);
+  EXPECT_NEAR(theta, 0.75, 1e-9);
+  EXPECT_EQ(first.substr(first.rfind(',') + 1), "ok");
+  EXPECT_EQ(second.substr(second.rfind(',') + 1), "outside_hull");
+
+  const auto back = run_floorgrid("map --inverse --model " + quoted(dir / "model.json") + " " +
+                                  std::to_string(g.x()) + "," + std::to_string(g.y()));
+  ASSERT_EQ(back.status, 0) << back.err;
+  EXPECT_NE(back.out.find("-> 10.0000"), std::string::npos) << back.out;
+}
+
+TEST(FitAndMapCommands, PairsInPixelsAreMappedInPixels) {
+  TempDir dir;
+  write_pairs(dir / "px.csv", 0.05);
+  ASSERT_EQ(run_floorgrid("fit --pairs " + quoted(dir / "px.csv") +
+                          " --model gt-affine --unit 0.05 --out " + quoted(dir / "m.json"))
+                .status,
+            0);
+  EXPECT_EQ(nlohmann::json::parse(read_file(dir / "m.json"))["unit"], 0.05);
+  const auto px = run_floorgrid("map --model " + quoted(dir / "m.json") + " 200,100");
+  ASSERT_EQ(px.status, 0) << px.err;
+  const Eigen::Vector2d g = truth({10.0, 5.0}) / 0.05;  // (200, 100) px is (10, 5) m
+  std::ostringstream expected;
+  expected.precision(6);
+  expected << std::fixed << g.x();
+  EXPECT_NE(px.out.find("-> " + expected.str()), std::string::npos) << px.out;
+}
+
+TEST(FitAndMapCommands, BadInputExitsWithTwoNamingTheProblem) {
+  TempDir dir;
+  write_pairs(dir / "pairs.csv", 1.0);
+  ASSERT_EQ(run_floorgrid("fit --pairs " + quoted(dir / "pairs.csv") + " --model gt --out " +
+                          quoted(dir / "m.json"))
+                .status,
+            0);
+  auto model = nlohmann::json::parse(read_file(dir / "m.json"));
+  model["version"] = 99;
+  write_file(dir / "v99.json", model.dump());
+  model["version"] = 1;
+  model["model"] = "magic";
+  write_file(dir / "magic.json", model.dump());
+  write_file(dir / "broken.json", "{\n  \"format\": \"floorgrid-model\",\n  oops\n}\n");
+  write_file(dir / "bad.csv", "x,z\n1,2\n");
+  write_file(dir / "short.csv", "x,y\n1,2\n3\n");
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"fit --pairs " + quoted(dir / "pairs.csv") + " --model nope --out " + quoted(dir / "x.json"),
+       "nope"},
+      {"fit --pairs " + quoted(dir / "missing.csv") + " --model gt --out " + quoted(dir / "x.json"),
+       "missing.csv"},
+      {"fit --pairs " + quoted(dir / "pairs.csv") + " --cv 1 --out " + quoted(dir / "x.json"),
+       "--cv"},
+      {"map --model " + quoted(dir / "v99.json") + " 1,2", "version"},
+      {"map --model " + quoted(dir / "magic.json") + " 1,2", "magic"},
+      {"map --model " + quoted(dir / "broken.json") + " 1,2", "broken.json:3"},
+      {"map --model " + quoted(dir / "m.json") + " 1,x", "POINTS"},
+      {"map --model " + quoted(dir / "m.json") + " --points " + quoted(dir / "bad.csv") +
+           " --out " + quoted(dir / "o.csv"),
+       "bad.csv:1"},
+      {"map --model " + quoted(dir / "m.json") + " --points " + quoted(dir / "short.csv") +
+           " --out " + quoted(dir / "o.csv"),
+       "short.csv:3"},
+      {"map --model " + quoted(dir / "m.json"), "--points"},
+  };
+  for (const auto& [args, expected] : cases) {
+    const auto run = run_floorgrid(args);
+    EXPECT_EQ(run.status, 2) << args;
+    EXPECT_NE(run.err.find(expected), std::string::npos) << args << ": " << run.err;
+  }
+  EXPECT_FALSE(fs::exists(dir / "x.json"));
+  EXPECT_FALSE(fs::exists(dir / "o.csv"));
+}
+
+}  // namespace
+}  // namespace floorgrid
