@@ -1,0 +1,68 @@
+#include "floorgrid/evaluation/domain.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "floorgrid/geometry/convex_hull.hpp"
+#include "floorgrid/maps/distance_field.hpp"
+
+namespace floorgrid {
+
+namespace {
+Eigen::Matrix2Xd keep(const Eigen::Matrix2Xd& points, const std::vector<Eigen::Index>& indices) {
+  Eigen::Matrix2Xd out(2, static_cast<Eigen::Index>(indices.size()));
+  for (std::size_t k = 0; k < indices.size(); ++k)
+    out.col(static_cast<Eigen::Index>(k)) = points.col(indices[k]);
+  return out;
+}
+}  // namespace
+
+EvaluationDomain warp_domain(
+    const VectorFloorplan& walls, const OccupancyGrid& gridmap,
+    const std::function<Eigen::Vector2d(const Eigen::Vector2d&)>& plan_to_grid, double spacing,
+    double radius) {
+  const Eigen::Matrix2Xd samples = walls.sample_points(spacing);
+  const DistanceField observed = observed_distance_field(gridmap, 2.0 * radius + 1.0);
+  std::vector<Eigen::Index> inside;
+  for (Eigen::Index i = 0; i < samples.cols(); ++i) {
+    if (observed.at(plan_to_grid(samples.col(i))) <= radius)
+      inside.push_back(i);
+  }
+  return {"warp", keep(samples, inside), spacing};
+}
+
+EvaluationDomain hull_domain(const VectorFloorplan& walls, const Eigen::Matrix2Xd& pair_points,
+                             double spacing) {
+  const Eigen::Matrix2Xd samples = walls.sample_points(spacing);
+  const auto hull = convex_hull(pair_points);
+  std::vector<Eigen::Index> inside;
+  for (Eigen::Index i = 0; i < samples.cols(); ++i) {
+    if (inside_convex_polygon(hull, samples.col(i)))
+      inside.push_back(i);
+  }
+  return {"manual_pairs_hull", keep(samples, inside), spacing};
+}
+
+ErrorStatistics error_statistics(std::vector<double> errors) {
+  ErrorStatistics s;
+  s.count = errors.size();
+  if (errors.empty())
+    return s;
+  std::sort(errors.begin(), errors.end());
+  double sum = 0.0;
+  for (const double e : errors)
+    sum += e;
+  s.mean = sum / static_cast<double>(errors.size());
+  const auto at = [&](double q) {
+    const double position = q * static_cast<double>(errors.size() - 1);
+    const auto lo = static_cast<std::size_t>(std::floor(position));
+    const std::size_t hi = std::min(lo + 1, errors.size() - 1);
+    return errors[lo] + (position - static_cast<double>(lo)) * (errors[hi] - errors[lo]);
+  };
+  s.median = at(0.5);
+  s.p95 = at(0.95);
+  s.max = errors.back();
+  return s;
+}
+
+}  // namespace floorgrid
