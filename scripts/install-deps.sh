@@ -12,6 +12,8 @@ packages=(
   libcli11-dev nlohmann-json3-dev libfmt-dev libspdlog-dev libcpp-httplib-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
+  # OpenCV calib3d: only bench/ransac_bench links it (cv::estimateAffinePartial2D comparison)
+  libopencv-calib3d-dev
   # independent DXF reader used only by tests (never linked)
   python3-ezdxf
 )

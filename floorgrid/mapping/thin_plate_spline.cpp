@@ -1,0 +1,268 @@
+#include "floorgrid/mapping/thin_plate_spline.hpp"
+
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+#include <Eigen/QR>
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <numbers>
+#include <numeric>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <utility>
+#include <vector>
+
+#include "floorgrid/core/error.hpp"
+
+namespace floorgrid {
+namespace {
+
+// In normalized units (the centres' rms radius is 1): centres closer than this coincide, and
+// a cloud whose minor axis is below 1e-6 of its major axis is a line.
+constexpr double kCoincident = 1e-9;
+constexpr double kCollinearVarianceRatio = 1e-12;
+
+[[noreturn]] void throw_pairs_error(const std::string& message) {
+  throw InputError(message, {}, 0, "pairs");
+}
+
+// U(r) = r^2 log r = r^2 log(r^2) / 2 from r^2. Clamping r^2 at DBL_MIN inside the log makes
+// U(0) = 0 * log(DBL_MIN) = 0 without a branch, so the expression vectorizes.
+template <typename Derived>
+auto kernel_from_squared(const Eigen::ArrayBase<Derived>& r2) {
+  return 0.5 * r2 * r2.max(DBL_MIN).log();
+}
+
+// The first two centres (by index) closer than kCoincident, or (-1, -1).
+std::pair<Eigen::Index, Eigen::Index> find_coincident(const Eigen::ArrayXd& x,
+                                                      const Eigen::ArrayXd& y) {
+  std::vector<Eigen::Index> order(static_cast<std::size_t>(x.size()));
+  std::iota(order.begin(), order.end(), Eigen::Index{0});
+  std::sort(order.begin(), order.end(),
+            [&](Eigen::Index a, Eigen::Index b) { return x[a] < x[b]; });
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const Eigen::Index i = order[k];
+    for (std::size_t l = k + 1; l < order.size() && x[order[l]] - x[i] <= kCoincident; ++l) {
+      const Eigen::Index j = order[l];
+      if (std::abs(y[j] - y[i]) <= kCoincident)
+        return {std::min(i, j), std::max(i, j)};
+    }
+  }
+  return {-1, -1};
+}
+
+void validate_inputs(const Eigen::Ref<const Eigen::Matrix2Xd>& points_in_plan,
+                     const Eigen::Ref<const Eigen::Matrix2Xd>& points_in_grid,
+                     const ThinPlateSplineOptions& options) {
+  if (!(options.regularization >= 0.0) || !std::isfinite(options.regularization)) {
+    std::ostringstream message;
+    message << "must be >= 0 m^2 (got " << options.regularization << ")";
+    throw InputError(message.str(), {}, 0, "tps.regularization");
+  }
+  const Eigen::Index n = points_in_plan.cols();
+  if (points_in_grid.cols() != n) {
+    throw_pairs_error("mismatched sizes: " + std::to_string(n) + " plan points, " +
+                      std::to_string(points_in_grid.cols()) + " grid points");
+  }
+  if (n < 3) {
+    throw_pairs_error("a thin-plate spline needs at least 3 pairs, not all collinear (got " +
+                      std::to_string(n) + ")");
+  }
+  for (Eigen::Index i = 0; i < n; ++i) {
+    if (!points_in_plan.col(i).allFinite() || !points_in_grid.col(i).allFinite()) {
+      throw_pairs_error("pair " + std::to_string(i) + " has a NaN or infinite coordinate");
+    }
+  }
+}
+
+// The sums over the centres that evaluation needs, at one normalized point.
+struct KernelSums {
+  Eigen::Vector2d value = Eigen::Vector2d::Zero();     // sum w U
+  Eigen::Matrix2d gradient = Eigen::Matrix2d::Zero();  // row k: sum w_k grad U
+  Eigen::Vector2d mixed = Eigen::Vector2d::Zero();     // sum w d^2U / dx dy
+};
+
+}  // namespace
+
+ThinPlateSpline ThinPlateSpline::fit(const Eigen::Ref<const Eigen::Matrix2Xd>& points_in_plan,
+                                     const Eigen::Ref<const Eigen::Matrix2Xd>& points_in_grid,
+                                     const ThinPlateSplineOptions& options) {
+  validate_inputs(points_in_plan, points_in_grid, options);
+  const Eigen::Index n = points_in_plan.cols();
+  ThinPlateSplineData d;
+  d.centres_in_plan = points_in_plan;
+  d.regularization = options.regularization;
+
+  // Normalize: centred, unit rms radius.
+  d.input_offset = points_in_plan.rowwise().mean();
+  Eigen::Matrix2Xd x = points_in_plan.colwise() - d.input_offset;
+  d.input_scale = std::sqrt(x.squaredNorm() / static_cast<double>(n));
+  if (!(d.input_scale > kCoincident * std::max(1.0, d.input_offset.cwiseAbs().maxCoeff()))) {
+    throw_pairs_error("the plan points coincide: a thin-plate spline needs 3 non-collinear");
+  }
+  x /= d.input_scale;
+  const Eigen::Matrix2d spread = x * x.transpose() / static_cast<double>(n);
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> axes(spread, Eigen::EigenvaluesOnly);
+  if (!(axes.eigenvalues()[0] > kCollinearVarianceRatio * axes.eigenvalues()[1])) {
+    throw_pairs_error("the plan points are collinear: a thin-plate spline needs 3 non-collinear");
+  }
+  const Eigen::ArrayXd cx = x.row(0).transpose().array();
+  const Eigen::ArrayXd cy = x.row(1).transpose().array();
+  if (options.regularization == 0.0) {
+    const auto [i, j] = find_coincident(cx, cy);
+    if (i >= 0) {
+      throw_pairs_error("plan points " + std::to_string(i) + " and " + std::to_string(j) +
+                        " coincide: an interpolating thin-plate spline (regularization 0) needs "
+                        "distinct plan points; merge them or set regularization > 0");
+    }
+  }
+  d.output_offset = points_in_grid.rowwise().mean();
+  const double lambda = options.regularization / (d.input_scale * d.input_scale);
+
+  // K, then B = Q^T K Q with the QR of P = [1 x y].
+  Eigen::MatrixXd B(n, n);
+  for (Eigen::Index j = 0; j < n; ++j) {
+    B.col(j) = kernel_from_squared((cx - cx[j]).square() + (cy - cy[j]).square()).matrix();
+  }
+  Eigen::MatrixXd P(n, 3);
+  P.col(0).setOnes();
+  P.col(1) = cx.matrix();
+  P.col(2) = cy.matrix();
+  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(P);
+  const auto Q = qr.householderQ();
+  Q.adjoint().applyThisOnTheLeft(B);
+  Q.applyThisOnTheRight(B);
+  Eigen::MatrixXd z = (points_in_grid.colwise() - d.output_offset).transpose();  // n x 2
+  Q.adjoint().applyThisOnTheLeft(z);
+
+  // (Q2^T K Q2 + lambda I) g = Q2^T y, by Cholesky in place.
+  const Eigen::Index m = n - 3;
+  Eigen::MatrixXd g(m, 2);
+  if (m > 0) {
+    B.bottomRightCorner(m, m).diagonal().array() += lambda;
+    Eigen::Ref<Eigen::MatrixXd> block = B.bottomRightCorner(m, m);
+    const Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>> cholesky(block);
+    if (cholesky.info() != Eigen::Success) {
+      throw_pairs_error(
+          "the plan points are too close together for an interpolating thin-plate spline: set "
+          "regularization > 0");
+    }
+    g = cholesky.solve(z.bottomRows(m));
+  }
+  // R a = Q1^T (y - K w); the lambda w term drops out (Q1^T Q2 = 0).
+  const Eigen::Matrix<double, 3, 2> rhs = z.topRows(3) - B.topRightCorner(3, m) * g;
+  const Eigen::Matrix<double, 3, 2> a =
+      qr.matrixQR().topLeftCorner(3, 3).triangularView<Eigen::Upper>().solve(rhs);
+  Eigen::MatrixXd w = Eigen::MatrixXd::Zero(n, 2);
+  w.bottomRows(m) = g;
+  Q.applyThisOnTheLeft(w);
+  d.kernel_weights = w.transpose();
+  d.affine = a.transpose();
+  if (!d.kernel_weights.allFinite() || !d.affine.allFinite()) {
+    throw_pairs_error(
+        "the thin-plate spline system is numerically singular: set regularization > 0");
+  }
+  return ThinPlateSpline(std::move(d));
+}
+
+ThinPlateSpline::ThinPlateSpline(ThinPlateSplineData data) : data_(std::move(data)) {
+  const Eigen::Index n = data_.centres_in_plan.cols();
+  if (data_.kernel_weights.cols() != n) {
+    throw InputError("mismatched sizes: " + std::to_string(n) + " centres, " +
+                         std::to_string(data_.kernel_weights.cols()) + " kernel weights",
+                     {}, 0, "tps");
+  }
+  if (!data_.centres_in_plan.allFinite() || !data_.kernel_weights.allFinite() ||
+      !data_.affine.allFinite() || !data_.input_offset.allFinite() ||
+      !data_.output_offset.allFinite() || !std::isfinite(data_.regularization) ||
+      !(data_.input_scale > 0.0) || !std::isfinite(data_.input_scale)) {
+    throw InputError("a value is NaN or infinite, or input_scale is not > 0", {}, 0, "tps");
+  }
+  const Eigen::Matrix2Xd x =
+      (data_.centres_in_plan.colwise() - data_.input_offset) / data_.input_scale;
+  cx_ = x.row(0).transpose().array();
+  cy_ = x.row(1).transpose().array();
+  wx_ = data_.kernel_weights.row(0).transpose().array();
+  wy_ = data_.kernel_weights.row(1).transpose().array();
+}
+
+Eigen::Vector2d ThinPlateSpline::normalize(const Eigen::Vector2d& point_in_plan) const {
+  return (point_in_plan - data_.input_offset) / data_.input_scale;
+}
+
+Eigen::Vector2d ThinPlateSpline::value_at(const Eigen::Vector2d& x, Eigen::ArrayXd& u) const {
+  u = kernel_from_squared((cx_ - x.x()).square() + (cy_ - x.y()).square());
+  return data_.output_offset + data_.affine.col(0) + data_.affine.rightCols<2>() * x +
+         Eigen::Vector2d((wx_ * u).sum(), (wy_ * u).sum());
+}
+
+Eigen::Vector2d ThinPlateSpline::evaluate(const Eigen::Vector2d& point_in_plan) const {
+  Eigen::ArrayXd u;
+  return value_at(normalize(point_in_plan), u);
+}
+
+Eigen::Matrix2Xd ThinPlateSpline::evaluate_batch(
+    const Eigen::Ref<const Eigen::Matrix2Xd>& points_in_plan, int threads) const {
+  const Eigen::Index m = points_in_plan.cols();
+  Eigen::Matrix2Xd out(2, m);
+  const auto run = [&](Eigen::Index first, Eigen::Index last) {
+    Eigen::ArrayXd u(size());
+    for (Eigen::Index i = first; i < last; ++i) {
+      out.col(i) = value_at(normalize(points_in_plan.col(i)), u);
+    }
+  };
+  // A second thread pays off from a few hundred thousand kernel terms.
+  if (threads >= 2 && m >= 2 && m * size() >= 200000) {
+    std::thread helper(run, m / 2, m);
+    run(0, m / 2);
+    helper.join();
+  } else {
+    run(0, m);
+  }
+  return out;
+}
+
+void ThinPlateSpline::evaluate_with_derivatives(const Eigen::Vector2d& point_in_plan,
+                                                Eigen::Vector2d& value,
+                                                Eigen::Matrix2d& J_grid_plan,
+                                                Eigen::Vector2d& mixed) const {
+  const Eigen::Vector2d x = normalize(point_in_plan);
+  const Eigen::ArrayXd dx = x.x() - cx_;
+  const Eigen::ArrayXd dy = x.y() - cy_;
+  const Eigen::ArrayXd r2 = (dx.square() + dy.square()).max(DBL_MIN);
+  const Eigen::ArrayXd log_r2 = r2.log();
+  const Eigen::ArrayXd u = 0.5 * r2 * log_r2;
+  // grad U = (log r^2 + 1) (x - c); d^2 U / dx dy = 2 dx dy / r^2 (taken as 0 at r = 0).
+  const Eigen::ArrayXd slope = log_r2 + 1.0;
+  const Eigen::ArrayXd cross = 2.0 * dx * dy / r2;
+  value = data_.output_offset + data_.affine.col(0) + data_.affine.rightCols<2>() * x +
+          Eigen::Vector2d((wx_ * u).sum(), (wy_ * u).sum());
+  Eigen::Matrix2d gradient;
+  gradient << (wx_ * slope * dx).sum(), (wx_ * slope * dy).sum(), (wy_ * slope * dx).sum(),
+      (wy_ * slope * dy).sum();
+  J_grid_plan = (data_.affine.rightCols<2>() + gradient) / data_.input_scale;
+  mixed = Eigen::Vector2d((wx_ * cross).sum(), (wy_ * cross).sum()) /
+          (data_.input_scale * data_.input_scale);
+}
+
+Eigen::Matrix2d ThinPlateSpline::jacobian(const Eigen::Vector2d& point_in_plan) const {
+  Eigen::Vector2d value, mixed;
+  Eigen::Matrix2d J;
+  evaluate_with_derivatives(point_in_plan, value, J, mixed);
+  return J;
+}
+
+double ThinPlateSpline::bending_energy() const {
+  double quadratic = 0.0;  // sum over both outputs of w^T K w
+  for (Eigen::Index j = 0; j < size(); ++j) {
+    const Eigen::ArrayXd u = kernel_from_squared((cx_ - cx_[j]).square() + (cy_ - cy_[j]).square());
+    quadratic += wx_[j] * (wx_ * u).sum() + wy_[j] * (wy_ * u).sum();
+  }
+  // The kernel's fundamental solution: Delta^2 U = 8 pi delta, so E = 8 pi w^T K w (normalized
+  // units); the energy of f(p) = g((p - o) / s) is that of g over s^2.
+  return 8.0 * std::numbers::pi * quadratic / (data_.input_scale * data_.input_scale);
+}
+
+}  // namespace floorgrid
