@@ -3,12 +3,15 @@
 #include <algorithm>
 
 #include "floorgrid/core/error.hpp"
+#include "floorgrid/mapping/gaussian_process_mapping.hpp"
 #include "floorgrid/mapping/global_transform.hpp"
+#include "floorgrid/mapping/piecewise_affine.hpp"
 
 namespace floorgrid {
 
 const std::vector<std::string>& mapping_model_names() {
-  static const std::vector<std::string> names = {"lc", "gt", "gt-rigid", "gt-affine", "ct", "auto"};
+  static const std::vector<std::string> names = {"lc", "gt",   "gt-rigid", "gt-affine", "ct",
+                                                 "gp", "gpgt", "dt",       "auto"};
   return names;
 }
 
@@ -25,6 +28,11 @@ std::unique_ptr<PointMapping> make_mapping(const MappingOptions& o) {
     return std::make_unique<LinearCombinationMapping>(o.common, o.lc);
   if (m == "ct")
     return std::make_unique<LocalTransformsMapping>(o.common, o.ct);
+  if (m == "dt")
+    return std::make_unique<PiecewiseAffineMapping>(o.common);
+  if (m == "gp" || m == "gpgt") {
+    return std::make_unique<GaussianProcessMapping>(o.common, o.gp, m == "gpgt", o.ransac);
+  }
   if (m == "auto") {
     // Only the candidates this build knows (the default list names every model).
     MappingOptions a = o;

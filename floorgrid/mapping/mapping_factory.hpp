@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "floorgrid/mapping/gaussian_process.hpp"
 #include "floorgrid/mapping/linear_combination.hpp"
 #include "floorgrid/mapping/local_transforms.hpp"
 #include "floorgrid/mapping/model_selection.hpp"
@@ -19,6 +20,7 @@ struct MappingOptions {
   RansacOptions ransac;         ///< gt variants (and gpgt's global part); kind set by model
   LinearCombinationOptions lc;  ///< lc
   LocalTransformsOptions ct;    ///< ct
+  GaussianProcessOptions gp;    ///< gp and gpgt
   AutoOptions auto_select;      ///< auto: candidates and cross-validation
 };
 

@@ -1,0 +1,164 @@
+#include "floorgrid/mapping/gaussian_process_mapping.hpp"
+
+#include "floorgrid/core/error.hpp"
+#include "floorgrid/mapping/model_file.hpp"
+
+namespace floorgrid {
+
+GaussianProcessMapping::GaussianProcessMapping(MappingCommonOptions common,
+                                               GaussianProcessOptions gp, bool on_global_transform,
+                                               RansacOptions ransac)
+    : PointMapping(std::move(common)),
+      gp_options_(std::move(gp)),
+      global_(on_global_transform),
+      ransac_(ransac) {
+  validate_gaussian_process_options(gp_options_);
+  ransac_.kind = TransformKind::similarity;
+  ransac_.seed = this->common().seed;
+}
+
+GaussianProcessMapping::~GaussianProcessMapping() = default;
+
+void GaussianProcessMapping::fit_model(const ReferencePairs& pairs, FitSummary& summary) {
+  Eigen::Matrix2Xd outputs = pairs.points_in_grid;
+  nlohmann::json global = nullptr;
+  if (global_) {
+    // eq. 4.17-4.18: the residuals of the global transform are what the GP learns.
+    const RansacResult gt = ransac_transform(pairs, ransac_);
+    if (!gt.ok)
+      throw InputError("no global transform fits the pairs: " + gt.message, {}, 0, "pairs");
+    T_grid_plan_ = gt.estimate.T_grid_plan;
+    outputs -= (T_grid_plan_.topLeftCorner<2, 2>() * pairs.points_in_plan).colwise() +
+               T_grid_plan_.topRightCorner<2, 1>();
+    global = {{"T_grid_plan", model_json::matrix(T_grid_plan_)},
+              {"inliers", gt.inlier_count},
+              {"rms_m", gt.estimate.rms}};
+  }
+  GaussianProcessFit fit = fit_gaussian_process(pairs.points_in_plan, outputs, gp_options_);
+  process_.emplace(std::move(fit.model));
+  const Eigen::Matrix2Xd residual = forward_batch(pairs.points_in_plan) - pairs.points_in_grid;
+  summary.rms_m = std::sqrt(residual.colwise().squaredNorm().mean());
+  const GaussianProcessSummary& s = fit.summary;
+  const GpHyperparameters& h = s.hyperparameters;
+  summary.details = {
+      {"kernel",
+       "squared exponential, a length scale per plan axis, shared by both grid coordinates"},
+      {"mean", global_ ? "global similarity (gt) plus the GP of its residuals"
+                       : "constant (the outputs' mean)"},
+      {"length_scale_m", {h.length_scale.x(), h.length_scale.y()}},
+      {"signal_std_m", h.signal_std},
+      {"noise_std_m", h.noise_std},
+      {"tuned", s.tuned},
+      {"tuning",
+       s.tuned ? "RPROP (iRprop+) on log-parameters, log marginal likelihood, analytic gradients"
+               : "hyperparameters given"},
+      {"tuning_points", s.tuning_points},
+      {"training_points", s.training_points},
+      {"iterations", s.iterations},
+      {"converged", s.converged},
+      {"log_marginal_likelihood", s.log_marginal_likelihood},
+      {"at_bounds", s.at_bounds},
+      {"jitter", s.jitter},
+      {"lattice_spacing_m", {s.lattice_spacing.x(), s.lattice_spacing.y()}},
+      {"lattice_error_m", s.lattice_error},
+      {"global_transform", global}};
+  if (!s.at_bounds.empty()) {
+    std::string list;
+    for (const auto& b : s.at_bounds)
+      list += (list.empty() ? "" : ", ") + b;
+    summary.warnings.push_back("GP hyperparameters at their bounds: " + list);
+  }
+}
+
+Eigen::Vector2d GaussianProcessMapping::forward(const Eigen::Vector2d& p) const {
+  Eigen::Vector2d q = process_->mean(p);
+  if (global_)
+    q += T_grid_plan_.topLeftCorner<2, 2>() * p + T_grid_plan_.topRightCorner<2, 1>();
+  return q;
+}
+
+Eigen::Matrix2Xd GaussianProcessMapping::forward_batch(
+    const Eigen::Ref<const Eigen::Matrix2Xd>& p) const {
+  Eigen::Matrix2Xd q = process_->mean_batch(p);
+  if (global_)
+    q += (T_grid_plan_.topLeftCorner<2, 2>() * p).colwise() + T_grid_plan_.topRightCorner<2, 1>();
+  return q;
+}
+
+Eigen::Matrix2d GaussianProcessMapping::jacobian(const Eigen::Vector2d& p) const {
+  Eigen::Matrix2d j = process_->mean_jacobian(p);
+  if (global_)
+    j += T_grid_plan_.topLeftCorner<2, 2>();
+  return j;
+}
+
+std::optional<double> GaussianProcessMapping::predictive_std(const Eigen::Vector2d& p) const {
+  return process_->standard_deviation(p);
+}
+
+nlohmann::json GaussianProcessMapping::parameters() const {
+  const GaussianProcessState& s = process_->state();
+  const GpHyperparameters& h = s.hyperparameters;
+  const GpLatticeOptions& lattice = process_->prediction_options().lattice;
+  nlohmann::json j = {
+      {"approximation", "pairs reduced by spatial binning to at most " +
+                            std::to_string(reduction_budget()) + ", then an exact GP on them"},
+      {"inputs", model_json::points(s.inputs)},
+      {"alpha", model_json::points(s.alpha)},
+      {"output_mean", {s.output_mean.x(), s.output_mean.y()}},
+      {"length_scale_m", {h.length_scale.x(), h.length_scale.y()}},
+      {"signal_std_m", h.signal_std},
+      {"noise_std_m", h.noise_std},
+      {"jitter", s.jitter},
+      {"lattice",
+       {{"enabled", lattice.enabled},
+        {"tolerance_m", lattice.tolerance},
+        {"initial_spacing", lattice.initial_spacing},
+        {"margin", lattice.margin},
+        {"max_nodes", lattice.max_nodes},
+        {"max_attempts", lattice.max_attempts}}}};
+  if (global_)
+    j["T_grid_plan"] = model_json::matrix(T_grid_plan_);
+  return j;
+}
+
+void GaussianProcessMapping::load_parameters(const nlohmann::json& j, const std::string& where) {
+  using namespace model_json;
+  const std::string p = "parameters.";
+  GaussianProcessState s;
+  s.inputs = points(member(j, "inputs", where, p), where, p + "inputs");
+  s.alpha = points(member(j, "alpha", where, p), where, p + "alpha");
+  const Eigen::VectorXd mean = vector(member(j, "output_mean", where, p), where, p + "output_mean");
+  const Eigen::VectorXd length =
+      vector(member(j, "length_scale_m", where, p), where, p + "length_scale_m");
+  if (mean.size() != 2 || length.size() != 2)
+    throw InputError("expected 2 numbers", where, 0, p + "output_mean");
+  s.output_mean = mean;
+  s.hyperparameters.length_scale = length;
+  s.hyperparameters.signal_std =
+      number(member(j, "signal_std_m", where, p), where, p + "signal_std_m");
+  s.hyperparameters.noise_std =
+      number(member(j, "noise_std_m", where, p), where, p + "noise_std_m");
+  s.jitter = number(member(j, "jitter", where, p), where, p + "jitter");
+  GpPredictionOptions prediction = gp_options_.prediction;
+  const nlohmann::json& lattice = member(j, "lattice", where, p);
+  prediction.lattice.enabled = lattice.value("enabled", true);
+  prediction.lattice.tolerance = number(member(lattice, "tolerance_m", where, p + "lattice."),
+                                        where, p + "lattice.tolerance_m");
+  prediction.lattice.initial_spacing =
+      number(member(lattice, "initial_spacing", where, p + "lattice."), where,
+             p + "lattice.initial_spacing");
+  prediction.lattice.margin =
+      number(member(lattice, "margin", where, p + "lattice."), where, p + "lattice.margin");
+  prediction.lattice.max_nodes = lattice.value("max_nodes", prediction.lattice.max_nodes);
+  prediction.lattice.max_attempts = lattice.value("max_attempts", prediction.lattice.max_attempts);
+  if (global_)
+    T_grid_plan_ = matrix(member(j, "T_grid_plan", where, p), where, p + "T_grid_plan", 3, 3);
+  try {
+    process_.emplace(std::move(s), prediction);
+  } catch (const InputError& e) {
+    throw InputError(e.message(), where, 0, p + e.field());
+  }
+}
+
+}  // namespace floorgrid

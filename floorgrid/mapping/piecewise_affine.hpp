@@ -1,0 +1,55 @@
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "floorgrid/mapping/delaunay.hpp"
+#include "floorgrid/mapping/point_mapping.hpp"
+
+namespace floorgrid {
+
+/// `dt` (thesis 3.4, 4.5): the Delaunay triangulation of the plan points (exact predicates);
+/// a plan point maps with its barycentric coordinates into the partner triangle on the grid
+/// (eq. 4.20-4.23). Outside the hull, the triangle on the nearest hull edge extrapolates. The
+/// map is continuous and piecewise affine; the inverse finds the grid triangle holding the
+/// point (not invertible where that triangle is flipped against its plan triangle: a fold).
+class PiecewiseAffineMapping : public PointMapping {
+ public:
+  /// A dt model.
+  explicit PiecewiseAffineMapping(MappingCommonOptions common);
+  ~PiecewiseAffineMapping() override;
+
+  std::string name() const override { return "dt"; }
+  std::size_t min_pairs() const override { return 3; }
+  bool needs_non_collinear() const override { return true; }
+  bool reduces_pairs() const override { return true; }
+
+  Eigen::Vector2d forward(const Eigen::Vector2d& point_in_plan) const override;
+  Eigen::Matrix2Xd forward_batch(
+      const Eigen::Ref<const Eigen::Matrix2Xd>& points_in_plan) const override;
+  Eigen::Matrix2d jacobian(const Eigen::Vector2d& point_in_plan) const override;
+  InverseMapping inverse(const Eigen::Vector2d& point_in_grid) const override;
+
+  /// Triangles whose grid partner is flipped (the map folds there).
+  std::size_t folded_triangles() const;
+
+ protected:
+  void fit_model(const ReferencePairs& pairs, FitSummary& summary) override;
+  nlohmann::json parameters() const override;
+  void load_parameters(const nlohmann::json& parameters, const std::string& where) override;
+
+ private:
+  void build(const ReferencePairs& pairs);
+  Eigen::Vector2d map_in(int triangle, const Eigen::Vector3d& barycentric) const;
+
+  ReferencePairs pairs_;
+  std::unique_ptr<DelaunayTriangulation> triangulation_;
+  std::vector<bool> folded_;  ///< per triangle
+  // Grid-side bucket index of the triangles, for the inverse.
+  Eigen::Vector2d bucket_origin_ = Eigen::Vector2d::Zero();
+  double bucket_size_ = 1.0;
+  int bucket_width_ = 0, bucket_height_ = 0;
+  std::vector<std::vector<int>> buckets_;
+};
+
+}  // namespace floorgrid
