@@ -26,16 +26,25 @@ struct ThinPlateSplineData {
   Eigen::Vector2d output_offset = Eigen::Vector2d::Zero();  ///< metres: the targets' centroid
 };
 
+/// f and its derivatives at one point (what a bicubic Hermite lattice needs).
+struct ThinPlateSplineDerivatives {
+  Eigen::Vector2d value = Eigen::Vector2d::Zero();        ///< f, metres
+  Eigen::Matrix2d J_grid_plan = Eigen::Matrix2d::Zero();  ///< df/dp
+  /// d^2 f / dx dy, 1/m (that of a kernel is taken as 0 at its centre, where it has no limit).
+  Eigen::Vector2d mixed = Eigen::Vector2d::Zero();
+};
+
 /// A thin-plate spline f: plan -> grid (both output coordinates share one kernel system), as in
 /// the QGIS/GDAL georeferencers, with optional smoothing.
 ///
 /// Solver: the affine part is eliminated with a Householder QR of P = [1 x y] = [Q1 Q2] R;
 /// w = Q2 g with (Q2^T K Q2 + lambda I) g = Q2^T y solved by Cholesky (positive definite for
 /// distinct centres, or any centres when lambda > 0), then R a = Q1^T (y - K w). The plan
-/// coordinates are centred and divided by their rms radius s first, for conditioning: that
-/// changes U(r) by s^2 U + s^2 log(s) r^2, and the r^2 part vanishes against P^T w = 0, so the
-/// normalized problem with lambda / s^2 is exactly the metric one. Cost O(n^3) time and
-/// 8 n^2 bytes: reduce the pairs to a budget (a few thousand) first.
+/// coordinates are centred and divided by their rms radius s first, for conditioning: as
+/// U(s r) = s^2 U(r) + s^2 log(s) r^2, and the r^2 part sums to a constant when P^T w = 0
+/// (absorbed by the affine part), the normalized problem with lambda / s^2 is exactly the
+/// metric one. Cost O(n^3) time and 8 n^2 bytes: reduce the pairs to a budget (a few
+/// thousand) first.
 class ThinPlateSpline {
  public:
   /// Fits f with f(points_in_plan.col(i)) ~ points_in_grid.col(i). Throws InputError naming
@@ -63,10 +72,8 @@ class ThinPlateSpline {
                                   int threads = 2) const;
   /// The analytic Jacobian J_grid_plan = df/dp at a plan point.
   Eigen::Matrix2d jacobian(const Eigen::Vector2d& point_in_plan) const;
-  /// f, its Jacobian and its mixed derivative d^2 f / dx dy at a plan point, in one sum (what a
-  /// bicubic Hermite lattice needs). The mixed derivative of U is taken as 0 at a centre.
-  void evaluate_with_derivatives(const Eigen::Vector2d& point_in_plan, Eigen::Vector2d& value,
-                                 Eigen::Matrix2d& J_grid_plan, Eigen::Vector2d& mixed) const;
+  /// f, its Jacobian and its mixed derivative at a plan point, in one sum over the centres.
+  ThinPlateSplineDerivatives derivatives(const Eigen::Vector2d& point_in_plan) const;
 
   /// The bending energy E = sum over both outputs of the integral over the plane of
   /// f_xx^2 + 2 f_xy^2 + f_yy^2 (dimensionless): 8 pi w^T K w / input_scale^2. O(n^2).

@@ -55,13 +55,14 @@ ThinPlateSplineLattice::ThinPlateSplineLattice(ThinPlateSpline spline,
   nodes_.resize(static_cast<std::size_t>(kPerNode * columns_ * rows_));
 
   const auto fill_rows = [&](Eigen::Index first, Eigen::Index last) {
-    Eigen::Vector2d value, mixed;
-    Eigen::Matrix2d J;
     for (Eigen::Index j = first; j < last; ++j) {
       for (Eigen::Index i = 0; i < columns_; ++i) {
         const Eigen::Vector2d p =
             lo + spacing_ * Eigen::Vector2d(static_cast<double>(i), static_cast<double>(j));
-        spline_.evaluate_with_derivatives(p, value, J, mixed);
+        const ThinPlateSplineDerivatives e = spline_.derivatives(p);
+        const Eigen::Vector2d& value = e.value;
+        const Eigen::Matrix2d& J = e.J_grid_plan;
+        const Eigen::Vector2d& mixed = e.mixed;
         double* node = &nodes_[static_cast<std::size_t>(kPerNode * (j * columns_ + i))];
         node[0] = value.x(), node[1] = value.y();
         node[2] = spacing_ * J(0, 0), node[3] = spacing_ * J(1, 0);
