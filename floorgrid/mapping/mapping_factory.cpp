@@ -6,12 +6,13 @@
 #include "floorgrid/mapping/gaussian_process_mapping.hpp"
 #include "floorgrid/mapping/global_transform.hpp"
 #include "floorgrid/mapping/piecewise_affine.hpp"
+#include "floorgrid/mapping/thin_plate_spline_mapping.hpp"
 
 namespace floorgrid {
 
 const std::vector<std::string>& mapping_model_names() {
   static const std::vector<std::string> names = {"lc", "gt",   "gt-rigid", "gt-affine", "ct",
-                                                 "gp", "gpgt", "dt",       "auto"};
+                                                 "gp", "gpgt", "dt",       "tps",       "auto"};
   return names;
 }
 
@@ -28,6 +29,8 @@ std::unique_ptr<PointMapping> make_mapping(const MappingOptions& o) {
     return std::make_unique<LinearCombinationMapping>(o.common, o.lc);
   if (m == "ct")
     return std::make_unique<LocalTransformsMapping>(o.common, o.ct);
+  if (m == "tps")
+    return std::make_unique<ThinPlateSplineMapping>(o.common, o.tps);
   if (m == "dt")
     return std::make_unique<PiecewiseAffineMapping>(o.common);
   if (m == "gp" || m == "gpgt") {

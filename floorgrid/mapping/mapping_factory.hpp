@@ -10,18 +10,20 @@
 #include "floorgrid/mapping/model_selection.hpp"
 #include "floorgrid/mapping/point_mapping.hpp"
 #include "floorgrid/mapping/ransac.hpp"
+#include "floorgrid/mapping/thin_plate_spline_mapping.hpp"
 
 namespace floorgrid {
 
 /// Every model's options, defaults in one place; `model` picks the model.
 struct MappingOptions {
-  std::string model = "auto";   ///< lc, gt, gt-rigid, gt-affine, ct, gp, gpgt, dt, tps, auto
-  MappingCommonOptions common;  ///< shared: reduction budget, extrapolation distance, seed
-  RansacOptions ransac;         ///< gt variants (and gpgt's global part); kind set by model
-  LinearCombinationOptions lc;  ///< lc
-  LocalTransformsOptions ct;    ///< ct
-  GaussianProcessOptions gp;    ///< gp and gpgt
-  AutoOptions auto_select;      ///< auto: candidates and cross-validation
+  std::string model = "auto";       ///< lc, gt, gt-rigid, gt-affine, ct, gp, gpgt, dt, tps, auto
+  MappingCommonOptions common;      ///< shared: reduction budget, extrapolation distance, seed
+  RansacOptions ransac;             ///< gt variants (and gpgt's global part); kind set by model
+  LinearCombinationOptions lc;      ///< lc
+  LocalTransformsOptions ct;        ///< ct
+  GaussianProcessOptions gp;        ///< gp and gpgt
+  ThinPlateSplineModelOptions tps;  ///< tps
+  AutoOptions auto_select;          ///< auto: candidates and cross-validation
 };
 
 /// The model names make_mapping knows, in the SPEC's order.

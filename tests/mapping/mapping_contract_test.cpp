@@ -32,7 +32,7 @@ const ModelTraits kModels[] = {
     {"gt-rigid", false, false, 1e-10}, {"gt-affine", true, false, 1e-10},
     {"ct", false, true, 1e-10},        {"gp", false, true, 1e-4},
     {"gpgt", false, true, 1e-10},      {"dt", true, true, 1e-10},
-    {"auto", true, true, 1e-10},
+    {"tps", true, true, 1e-10},        {"auto", true, true, 1e-10},
 };
 
 std::unique_ptr<PointMapping> fitted(const std::string& name, const ReferencePairs& pairs) {
