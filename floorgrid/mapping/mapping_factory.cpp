@@ -34,7 +34,9 @@ std::unique_ptr<PointMapping> make_mapping(const MappingOptions& o) {
   if (m == "dt")
     return std::make_unique<PiecewiseAffineMapping>(o.common);
   if (m == "gp" || m == "gpgt") {
-    return std::make_unique<GaussianProcessMapping>(o.common, o.gp, m == "gpgt", o.ransac);
+    RansacOptions ransac = o.ransac;
+    ransac.inlier_threshold = o.gpgt_inlier_threshold;
+    return std::make_unique<GaussianProcessMapping>(o.common, o.gp, m == "gpgt", ransac);
   }
   if (m == "auto") {
     // Only the candidates this build knows (the default list names every model).

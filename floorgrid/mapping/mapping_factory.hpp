@@ -16,9 +16,13 @@ namespace floorgrid {
 
 /// Every model's options, defaults in one place; `model` picks the model.
 struct MappingOptions {
-  std::string model = "auto";       ///< lc, gt, gt-rigid, gt-affine, ct, gp, gpgt, dt, tps, auto
-  MappingCommonOptions common;      ///< shared: reduction budget, extrapolation distance, seed
-  RansacOptions ransac;             ///< gt variants (and gpgt's global part); kind set by model
+  std::string model = "auto";   ///< lc, gt, gt-rigid, gt-affine, ct, gp, gpgt, dt, tps, auto
+  MappingCommonOptions common;  ///< shared: reduction budget, extrapolation distance, seed
+  RansacOptions ransac;         ///< gt variants (and gpgt's global part); kind set by model
+  /// metres: gpgt's RANSAC inlier distance. Wider than gt's: its similarity only has to carry
+  /// the bulk of the map (the GP takes bends of several decimetres), not reject every pair
+  /// a bend moves.
+  double gpgt_inlier_threshold = 0.5;
   LinearCombinationOptions lc;      ///< lc
   LocalTransformsOptions ct;        ///< ct
   GaussianProcessOptions gp;        ///< gp and gpgt

@@ -1,30 +1,104 @@
 #include "floorgrid/mapping/thin_plate_spline_mapping.hpp"
 
 #include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "floorgrid/core/random.hpp"
+#include "floorgrid/mapping/pair_preparation.hpp"
 
 #include "floorgrid/core/error.hpp"
 #include "floorgrid/mapping/model_file.hpp"
 
 namespace floorgrid {
 
+namespace {
+std::string fmt_lambda(double lambda) {
+  std::ostringstream out;
+  out << lambda;
+  return out.str();
+}
+}  // namespace
+
 ThinPlateSplineMapping::ThinPlateSplineMapping(MappingCommonOptions common,
                                                ThinPlateSplineModelOptions options)
     : PointMapping(std::move(common)), options_(options) {
-  if (!(options_.spline.regularization >= 0.0)) {
+  if (options_.regularization && !(*options_.regularization >= 0.0)) {
     throw InputError("must be >= 0 (m^2)", {}, 0, "tps.regularization");
   }
+  if (options_.tuning_pairs < 20)
+    throw InputError("must be >= 20", {}, 0, "tps.tuning_pairs");
+}
+
+namespace {
+
+/// Mean held-out error of a spline with `lambda` over 5 folds of `pairs`.
+double cross_validated_error(const ReferencePairs& pairs, double lambda) {
+  const Eigen::Index n = pairs.size();
+  double sum = 0.0;
+  for (int fold = 0; fold < 5; ++fold) {
+    std::vector<Eigen::Index> train, test;
+    for (Eigen::Index i = 0; i < n; ++i)
+      (i % 5 == fold ? test : train).push_back(i);
+    const ReferencePairs t = select_pairs(pairs, train);
+    try {
+      const ThinPlateSpline spline =
+          ThinPlateSpline::fit(t.points_in_plan, t.points_in_grid, {lambda});
+      for (const Eigen::Index i : test) {
+        sum += (spline.evaluate(pairs.points_in_plan.col(i)) - pairs.points_in_grid.col(i)).norm();
+      }
+    } catch (const InputError&) {
+      return std::numeric_limits<double>::infinity();
+    }
+  }
+  return sum / static_cast<double>(n);
+}
+
+}  // namespace
+
+double ThinPlateSplineMapping::choose_regularization(const ReferencePairs& pairs,
+                                                     nlohmann::json& table) const {
+  // A seeded random subsample, dealt into folds by position.
+  std::vector<Eigen::Index> order(static_cast<std::size_t>(pairs.size()));
+  for (Eigen::Index i = 0; i < pairs.size(); ++i)
+    order[static_cast<std::size_t>(i)] = i;
+  Random random(common().seed);
+  for (std::size_t i = order.size(); i > 1; --i) {
+    std::swap(order[i - 1],
+              order[static_cast<std::size_t>(random.integer(0, static_cast<std::int64_t>(i) - 1))]);
+  }
+  order.resize(std::min(order.size(), options_.tuning_pairs));
+  const ReferencePairs sample = select_pairs(pairs, order);
+  double best = 0.0, best_error = std::numeric_limits<double>::infinity();
+  for (const double lambda : {0.0, 1e-3, 1e-2, 0.1, 1.0, 3.0, 10.0, 30.0, 100.0, 300.0, 1000.0}) {
+    const double error = cross_validated_error(sample, lambda);
+    table[fmt_lambda(lambda)] =
+        std::isfinite(error) ? nlohmann::json(error) : nlohmann::json(nullptr);
+    if (error < best_error) {
+      best_error = error;
+      best = lambda;
+    }
+  }
+  return best * static_cast<double>(pairs.size()) / static_cast<double>(sample.size());
 }
 
 ThinPlateSplineMapping::~ThinPlateSplineMapping() = default;
 
 void ThinPlateSplineMapping::fit_model(const ReferencePairs& pairs, FitSummary& summary) {
-  spline_.emplace(
-      ThinPlateSpline::fit(pairs.points_in_plan, pairs.points_in_grid, options_.spline));
+  nlohmann::json table = nlohmann::json::object();
+  const double lambda =
+      options_.regularization ? *options_.regularization : choose_regularization(pairs, table);
+  spline_.emplace(ThinPlateSpline::fit(pairs.points_in_plan, pairs.points_in_grid, {lambda}));
   const Eigen::Matrix2Xd residual =
       spline_->evaluate_batch(pairs.points_in_plan, 2) - pairs.points_in_grid;
   summary.rms_m = std::sqrt(residual.colwise().squaredNorm().mean());
   summary.details = {{"centres", spline_->size()},
-                     {"regularization_m2", options_.spline.regularization},
+                     {"regularization_m2", lambda},
+                     {"regularization_chosen",
+                      options_.regularization
+                          ? "given"
+                          : "5-fold cross-validation on a subsample, scaled by pairs / subsample"},
+                     {"regularization_cv_error_m", table},
                      {"bending_energy", spline_->bending_energy()}};
 }
 
@@ -77,7 +151,6 @@ void ThinPlateSplineMapping::load_parameters(const nlohmann::json& j, const std:
   d.input_offset = in;
   d.output_offset = out;
   d.input_scale = number(member(j, "input_scale", where, p), where, p + "input_scale");
-  options_.spline.regularization = d.regularization;
   options_.lattice.spacing = j.value("lattice_spacing_m", options_.lattice.spacing);
   try {
     spline_.emplace(std::move(d));

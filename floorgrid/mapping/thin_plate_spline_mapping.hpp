@@ -12,13 +12,19 @@ namespace floorgrid {
 
 /// Options of the `tps` model.
 struct ThinPlateSplineModelOptions {
-  ThinPlateSplineOptions spline{0.01};    ///< regularization weight lambda, m^2 (0 interpolates)
+  /// Regularization weight lambda, m^2 (0 interpolates); nullopt chooses it by 5-fold
+  /// cross-validation on a subsample (see ThinPlateSplineMapping).
+  std::optional<double> regularization;
+  std::size_t tuning_pairs = 400;         ///< subsample size of the lambda choice
   ThinPlateSplineLatticeOptions lattice;  ///< for mapping many points at once
   Eigen::Index lattice_from = 50'000;     ///< batches at least this large use the lattice
 };
 
 /// `tps`: a thin-plate spline from plan to grid with a regularization weight, as in the QGIS
 /// and GDAL georeferencers (there unregularized). Pairs are reduced by spatial binning first.
+/// Unless given, lambda is chosen among 0 and 10^-3 .. 10^3 m^2 by 5-fold cross-validation on
+/// a random subsample of at most `tuning_pairs` pairs, then scaled by (pairs / subsample) so
+/// the penalty keeps its weight against the larger sum of squared residuals.
 /// Large batches are mapped through a bicubic lattice of the spline (built on first use,
 /// added error well under 1 mm on binned pairs); single points exactly.
 class ThinPlateSplineMapping : public PointMapping {
@@ -43,6 +49,9 @@ class ThinPlateSplineMapping : public PointMapping {
   void load_parameters(const nlohmann::json& parameters, const std::string& where) override;
 
  private:
+  /// lambda by cross-validation on a subsample; `table` gets the error of every candidate.
+  double choose_regularization(const ReferencePairs& pairs, nlohmann::json& table) const;
+
   ThinPlateSplineModelOptions options_;
   std::optional<ThinPlateSpline> spline_;
   mutable std::once_flag lattice_once_;
