@@ -215,11 +215,11 @@ Eigen::Vector2d LocalTransformsMapping::forward(const Eigen::Vector2d& p) const 
   // Algorithm 2: weights 1/d^power, normalized; a point on a centroid takes that cluster.
   Eigen::Vector2d sum = Eigen::Vector2d::Zero();
   double total = 0.0;
+  const bool squared = options_.weight_power == 2.0;  // the default: no pow() per cluster
   for (const Cluster& c : clusters_) {
-    const double d = (p - c.centroid).norm();
-    if (d < 1e-12)
-      return apply(c.T_grid_plan, p);
-    const double w = std::pow(d, -options_.weight_power);
+    const double d2 = (p - c.centroid).squaredNorm();
+    if (d2 < 1e-24) return apply(c.T_grid_plan, p);
+    const double w = squared ? 1.0 / d2 : std::pow(d2, -0.5 * options_.weight_power);
     sum += w * apply(c.T_grid_plan, p);
     total += w;
   }
