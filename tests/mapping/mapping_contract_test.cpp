@@ -35,6 +35,20 @@ const ModelTraits kModels[] = {
     {"tps", true, true, 1e-10},        {"auto", true, true, 1e-10},
 };
 
+void PrintTo(const ModelTraits& traits, std::ostream* os) {
+  *os << traits.name;
+}
+
+/// The models with a given promise.
+std::vector<ModelTraits> models_where(bool ModelTraits::*promise) {
+  std::vector<ModelTraits> out;
+  for (const ModelTraits& m : kModels) {
+    if (m.*promise)
+      out.push_back(m);
+  }
+  return out;
+}
+
 std::unique_ptr<PointMapping> fitted(const std::string& name, const ReferencePairs& pairs) {
   MappingOptions options;
   options.model = name;
@@ -89,18 +103,18 @@ TEST_P(MappingContract, IdentityPairsMapToIdentity) {
             GetParam().identity_tolerance * domain_extent());
 }
 
-TEST_P(MappingContract, RecoversASimilarityExactly) {
-  if (!GetParam().exact_similarity)
-    GTEST_SKIP() << GetParam().name << " does not promise this";
+class ExactModels : public ::testing::TestWithParam<ModelTraits> {};
+
+TEST_P(ExactModels, RecoverASimilarityExactly) {
   const Truth truth = test::similarity(2.1, 1.07, {-31.0, 12.5});
   const ReferencePairs pairs = make_pairs(random_points(1000, 4), truth, 0.0, 5);
   const auto m = fitted(GetParam().name, pairs);
   EXPECT_LE(max_error(*m, points_in_hull(pairs, 1000, 6), truth), 1e-10 * domain_extent());
 }
 
-TEST_P(MappingContract, NonRigidModelsBeatAGlobalTransformByHalf) {
-  if (!GetParam().non_rigid)
-    GTEST_SKIP() << GetParam().name << " does not promise this";
+class NonRigidModels : public ::testing::TestWithParam<ModelTraits> {};
+
+TEST_P(NonRigidModels, BeatAGlobalTransformByHalf) {
   const Eigen::Matrix2Xd plan = random_points(1000, 7);
   const double spacing = std::sqrt(test::kWidth * test::kHeight / 1000.0);
   for (const auto& [label, truth, band] :
@@ -219,12 +233,19 @@ TEST_P(MappingContract, ConfidenceFlagsTellHowFarToTrust) {
       1.0);
 }
 
-INSTANTIATE_TEST_SUITE_P(Models, MappingContract, ::testing::ValuesIn(kModels),
-                         [](const auto& param_info) {
-                           std::string name = param_info.param.name;
-                           std::replace(name.begin(), name.end(), '-', '_');
-                           return name;
-                         });
+std::string model_test_name(const ::testing::TestParamInfo<ModelTraits>& param_info) {
+  std::string name = param_info.param.name;
+  std::replace(name.begin(), name.end(), '-', '_');
+  return name;
+}
+
+INSTANTIATE_TEST_SUITE_P(Models, MappingContract, ::testing::ValuesIn(kModels), model_test_name);
+INSTANTIATE_TEST_SUITE_P(Models, ExactModels,
+                         ::testing::ValuesIn(models_where(&ModelTraits::exact_similarity)),
+                         model_test_name);
+INSTANTIATE_TEST_SUITE_P(Models, NonRigidModels,
+                         ::testing::ValuesIn(models_where(&ModelTraits::non_rigid)),
+                         model_test_name);
 
 TEST(GlobalTransformModel, SixtyPercentOutliersStillRecoverTheTransform) {
   const Truth truth = test::similarity(-1.2, 0.95, {8.0, 3.0});
