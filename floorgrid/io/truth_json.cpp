@@ -102,9 +102,12 @@ json simulation_truth_json(const SimulatedDataset& d) {
   j["preset"] = d.preset.name;
   j["seed"] = d.seed;
   j["frames"] = {{"world", "metric world the laser sees, metres"},
-                 {"plan", "the plan's own coordinates in metres: world x plan.scale"},
+                 {"plan", "the plan's own coordinates in metres: world x plan.plan_per_world"},
                  {"grid", "the gridmap's ROS map frame, metres"}};
-  j["plan"] = {{"scale", d.plan_scale},
+  // Two views of the plan's scale error: plan metres per world metre, and SPEC's plan_scale
+  // (world metres per plan metre: a laser range divided by it is in plan metres).
+  j["plan"] = {{"plan_per_world", d.plan_scale},
+               {"plan_scale", 1.0 / d.plan_scale},
                {"drawing_units", d.preset.drawing_units},
                {"header_units", d.preset.header_units},
                {"drawing_units_per_metre", d.drawing_units_per_metre}};
@@ -190,7 +193,7 @@ PlanTruth read_plan_truth(const std::filesystem::path& path) {
         "unsupported version (this floorgrid reads version " + std::to_string(kVersion) + ")",
         where, 0, "version");
   }
-  const double scale = number(field(j, "plan", where, ""), "scale", where, "plan.");
+  const double scale = number(field(j, "plan", where, ""), "plan_per_world", where, "plan.");
   try {
     return PlanTruth(warp_from_json(field(j, "warp", where, ""), where), scale);
   } catch (const InputError& e) {
