@@ -1,0 +1,46 @@
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "floorgrid/io/dataset_manifest.hpp"
+#include "floorgrid/io/dxf_reader.hpp"
+#include "floorgrid/localization/robot_log.hpp"
+#include "floorgrid/mapping/reference_pairs.hpp"
+#include "floorgrid/maps/occupancy_grid.hpp"
+#include "floorgrid/maps/vector_floorplan.hpp"
+#include "floorgrid/simulation/plan_truth.hpp"
+
+namespace floorgrid::io {
+
+/// How a dataset's plan becomes a grid the plan filter can localize in.
+struct PlanRasterOptions {
+  double resolution = 0.05;     ///< metres per cell of a rasterized DXF plan
+  double wall_thickness = 0.0;  ///< metres: 0 draws each drawn line one cell wide
+  double margin = 2.0;          ///< metres of free border around the plan
+};
+
+/// Everything a dataset holds, read and prepared.
+struct LoadedDataset {
+  DatasetManifest manifest;                    ///< the manifest read
+  OccupancyGrid plan_grid;                     ///< the plan as an occupancy grid (plan metres)
+  std::optional<VectorFloorplan> plan;         ///< a DXF plan's geometry (layers filtered)
+  std::optional<DxfReport> dxf_report;         ///< how the DXF was read
+  Eigen::Matrix2Xd plan_wall_samples;          ///< plan wall points every ~5 cm (plan metres)
+  OccupancyGrid gridmap;                       ///< the robot's map
+  std::optional<RobotLog> log;                 ///< the run, odometry noise added when asked
+  std::optional<PlanTruth> truth_warp;         ///< a simulator's exact plan -> grid truth
+  std::optional<ReferencePairs> manual_pairs;  ///< hand-picked truth pairs (metres)
+  std::vector<std::string> warnings;           ///< from the readers
+};
+
+/// Reads a dataset (dataset.yaml or its folder): the plan (DXF rasterized, or a raster plan),
+/// the gridmap, the log (with the manifest's laser settings, and odometry noise added when
+/// `odometry_noise` is given), and the truth it references. InputError on bad input.
+LoadedDataset load_dataset(const std::filesystem::path& path, const PlanRasterOptions& raster = {});
+
+/// The occupied cell centres of a grid (the "walls" of a raster plan), 2 x N, metres.
+Eigen::Matrix2Xd occupied_cell_centres(const OccupancyGrid& grid);
+
+}  // namespace floorgrid::io

@@ -1,0 +1,62 @@
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "floorgrid/core/random.hpp"
+#include "floorgrid/localization/robot_log.hpp"
+#include "floorgrid/mapping/reference_pairs.hpp"
+#include "floorgrid/maps/distance_field.hpp"
+
+namespace floorgrid {
+
+/// How laser endpoints become reference pairs (thesis 4.6.1).
+struct PairExtractionOptions {
+  int beam_step = 2;                ///< keep every k-th beam of a scan (beam subsampling)
+  int max_pairs_per_scan = 40;      ///< then at most this many pairs per scan, evenly spread
+  double max_wall_distance = 0.10;  ///< metres (world): an endpoint must lie this close to an
+                                    ///< occupied cell of each map (drops furniture hits)
+};
+
+/// Why endpoints did not become pairs, counted (metrics.json `pairs.rejected.<reason>`).
+struct PairRejections {
+  std::size_t not_converged = 0;  ///< beams of scans where a filter was not converged
+  std::size_t no_return = 0;      ///< readings at or above max range (or invalid)
+  std::size_t off_plan_wall = 0;  ///< endpoints far from every wall of the plan
+  std::size_t off_grid_wall = 0;  ///< endpoints far from every occupied gridmap cell
+  std::size_t subsampled = 0;     ///< beams skipped by the beam subsampling
+  std::size_t per_scan_cap = 0;   ///< valid pairs dropped by the per-scan cap
+
+  /// Adds another count.
+  PairRejections& operator+=(const PairRejections& other);
+  /// Reason -> count, with SPEC's names.
+  std::map<std::string, std::size_t> by_reason() const;
+  /// All rejected beams.
+  std::size_t total() const;
+};
+
+/// Pairs as they are collected, scan by scan (appending to Eigen matrices would copy them).
+struct PairCollector {
+  std::vector<Eigen::Vector2d> plan;  ///< endpoints in the plan, plan metres
+  std::vector<Eigen::Vector2d> grid;  ///< the same endpoints in the grid, metres
+  /// The pairs collected.
+  ReferencePairs pairs() const;
+  /// Number of pairs.
+  std::size_t size() const { return plan.size(); }
+};
+
+/// Appends the pairs of one scan taken while both filters were converged: each kept return's
+/// endpoint from the plan filter's mean pose (the robot-frame endpoint divided by the plan's
+/// scale, world metres per plan metre) and from the grid filter's mean pose; `plan_walls` and
+/// `grid_walls` give the distance to the nearest occupied cell of each map (plan metres, grid
+/// metres).
+void extract_scan_pairs(const LaserScan& scan, const Pose2& pose_in_plan, double plan_scale,
+                        const Pose2& pose_in_grid, const DistanceField& plan_walls,
+                        const DistanceField& grid_walls, const PairExtractionOptions& options,
+                        PairCollector& pairs, PairRejections& rejections);
+
+/// Counts every beam of a scan as not_converged.
+void reject_scan(const LaserScan& scan, PairRejections& rejections);
+
+}  // namespace floorgrid
