@@ -1,7 +1,8 @@
 // Observation models: particle-beam evaluations per second of the likelihood field, ray casts
 // per second of GridRayCaster (and of a plain cell walk, for comparison), particle evaluations
-// per second of the beam model. Maps: the simulated office's SLAM-like gridmap (seed 1) and, when
-// present, the fr079 SLAM map (../shared/data/fr079/slam_map.png at 0.05 m/px).
+// per second of the beam model. Maps: the simulated office's and warehouse's SLAM-like gridmaps
+// (seed 1; the warehouse's 2117 x 1954 cells show the effect of a field larger than the caches)
+// and, when present, the fr079 SLAM map (../shared/data/fr079/slam_map.png at 0.05 m/px).
 // Run: build-*/bench/localization_bench (items_per_second: see each benchmark's comment).
 #include <benchmark/benchmark.h>
 
@@ -49,11 +50,12 @@ std::vector<Eigen::Vector2d> free_cell_centres(const OccupancyGrid& grid) {
   return points;
 }
 
-/// The simulated office: its gridmap and 32 scans of its log spread over the run.
-std::unique_ptr<BenchMap> make_office() {
-  const floorgrid::SimulatedDataset data = floorgrid::simulate("office", 1);
+/// A simulated building (`preset`, seed 1): its gridmap and 32 scans of its log spread over the
+/// run.
+std::unique_ptr<BenchMap> make_simulated(const std::string& preset) {
+  const floorgrid::SimulatedDataset data = floorgrid::simulate(preset, 1);
   auto map = std::make_unique<BenchMap>();
-  map->name = "office";
+  map->name = preset;
   map->grid = data.gridmap;
   map->free_points = free_cell_centres(map->grid);
   const std::size_t n = data.log.scans.size();
@@ -94,7 +96,12 @@ std::unique_ptr<BenchMap> make_fr079() {
 }
 
 const BenchMap& office() {
-  static const std::unique_ptr<BenchMap> map = make_office();
+  static const std::unique_ptr<BenchMap> map = make_simulated("office");
+  return *map;
+}
+
+const BenchMap& warehouse() {
+  static const std::unique_ptr<BenchMap> map = make_simulated("warehouse");
   return *map;
 }
 
@@ -304,6 +311,7 @@ int main(int argc, char** argv) {
   if (benchmark::ReportUnrecognizedArguments(argc, argv))
     return 1;
   register_map(&office());
+  register_map(&warehouse());
   if (const BenchMap* map = fr079())
     register_map(map);
   benchmark::RunSpecifiedBenchmarks();

@@ -14,11 +14,17 @@
 namespace floorgrid {
 namespace {
 
-constexpr float kBlocking = -1.0f;
+// A cell's code: 0 blocks, 1 lies within one cell of a blocking cell, c + 1 has a clearance of
+// c whole cells (the exact clearance rounded down, at most kMaxClearance). One byte per cell
+// keeps the field of a 100 x 50 m hall at 5 cm (4 M cells) within a few MB: a ray is bound by
+// the latency of its loads, and halving the footprint twice halves the time on such maps.
+constexpr std::uint8_t kBlockingCode = 0;
+constexpr int kMaxClearance = 253;
 
-// Clearances are exact square roots of integers; the margin keeps rounding in the
-// distance transform from ever turning a lower bound into an overestimate.
-constexpr float kClearanceMargin = 1e-3f;
+// Clearances are square roots of integers: either integers, or at least ~1/500 from one for
+// the values stored. This slack absorbs the distance transform's float rounding when rounding
+// down without ever rounding an irrational clearance up.
+constexpr float kRoundingSlack = 1e-4f;
 
 /// Clips the parameter interval [t0, t1] of the ray o + t d (one axis; inv_d = 1 / d) to
 /// [0, size].
@@ -50,7 +56,7 @@ struct RayLanes {
 
 /// What the four lanes share: the grid and the rays' common origin.
 struct FanContext {
-  const float* field;
+  const std::uint8_t* field;
   __m256d x, y, width, height, last_x, last_y, max_cells;
   double origin_x, origin_y, w, h;
 };
@@ -103,7 +109,10 @@ void advance_lanes(const FanContext& f, RayLanes& r) {
   const __m256d inf = _mm256_set1_pd(std::numeric_limits<double>::infinity());
   const __m128i index =
       _mm256_cvttpd_epi32(_mm256_and_pd(_mm256_fmadd_pd(r.iy, f.width, r.ix), r.active));
-  const __m256d c = _mm256_cvtps_pd(_mm_i32gather_ps(f.field, index, 4));
+  // Four bytes are read at each cell (the field is padded) and the low one kept.
+  const __m128i code = _mm_and_si128(
+      _mm_i32gather_epi32(reinterpret_cast<const int*>(f.field), index, 1), _mm_set1_epi32(0xFF));
+  const __m256d c = _mm256_sub_pd(_mm256_cvtepi32_pd(code), _mm256_set1_pd(1.0));
   const __m256d hit = _mm256_and_pd(_mm256_cmp_pd(c, zero, _CMP_LT_OQ), r.active);
   r.result = _mm256_blendv_pd(r.result, r.t, hit);
   r.active = _mm256_andnot_pd(hit, r.active);
@@ -134,18 +143,29 @@ void advance_lanes(const FanContext& f, RayLanes& r) {
   r.active = _mm256_andnot_pd(done, r.active);
 }
 
-/// Eight rays: two independent groups of four, stepped in turn so that one group's loads
-/// overlap the other's arithmetic (a step is bound by the latency of its gather).
-void march_eight(const FanContext& f, const double* dx, const double* dy, double* out) {
-  RayLanes a, b;
-  start_lanes(f, dx, dy, a);
-  start_lanes(f, dx + 4, dy + 4, b);
-  while (_mm256_movemask_pd(_mm256_or_pd(a.active, b.active)) != 0) {
-    advance_lanes(f, a);
-    advance_lanes(f, b);
+// Rays marched together: groups of four lanes, stepped in turn so that one group's loads
+// overlap the others' arithmetic (a step is bound by the latency of its gather). Measured on
+// fans of 60 rays: 3 groups beat 2 by ~5% and 4 (register spills) by ~25%; 12 rays also
+// divide the usual 60 beams evenly.
+constexpr int kGroups = 3;
+constexpr std::size_t kRaysPerMarch = 4 * kGroups;
+
+/// Marches kRaysPerMarch rays to their ends.
+void march(const FanContext& f, const double* dx, const double* dy, double* out) {
+  RayLanes lanes[kGroups];
+  for (int g = 0; g < kGroups; ++g)
+    start_lanes(f, dx + 4 * g, dy + 4 * g, lanes[g]);
+  for (;;) {
+    __m256d any = lanes[0].active;
+    for (int g = 1; g < kGroups; ++g)
+      any = _mm256_or_pd(any, lanes[g].active);
+    if (_mm256_movemask_pd(any) == 0)
+      break;
+    for (int g = 0; g < kGroups; ++g)
+      advance_lanes(f, lanes[g]);
   }
-  _mm256_storeu_pd(out, a.result);
-  _mm256_storeu_pd(out + 4, b.result);
+  for (int g = 0; g < kGroups; ++g)
+    _mm256_storeu_pd(out + 4 * g, lanes[g].result);
 }
 #endif
 
@@ -156,7 +176,8 @@ GridRayCaster::GridRayCaster(const OccupancyGrid& grid, const GridRayCasterOptio
       cos_yaw_(std::cos(geometry_.origin.theta)),
       sin_yaw_(std::sin(geometry_.origin.theta)) {
   const int w = geometry_.width, h = geometry_.height;
-  clearance_.assign(geometry_.size(), 0.0f);
+  // Three bytes of padding: the vectorized march reads four bytes at a cell.
+  codes_.assign(geometry_.size() + 3, kBlockingCode);
   if (w == 0 || h == 0)
     return;
   const auto blocks = [&](CellState s) {
@@ -173,7 +194,8 @@ GridRayCaster::GridRayCaster(const OccupancyGrid& grid, const GridRayCasterOptio
   }
   if (!any) {
     // Nothing blocks: one step leaves the grid from anywhere.
-    clearance_.assign(geometry_.size(), static_cast<float>(w + h + 1));
+    std::fill(codes_.begin(), codes_.begin() + static_cast<std::ptrdiff_t>(geometry_.size()),
+              static_cast<std::uint8_t>(kMaxClearance + 1));
     return;
   }
   // For a point q of cell c and a blocking cell o at integer offset (a, b), the distance from q
@@ -187,10 +209,14 @@ GridRayCaster::GridRayCaster(const OccupancyGrid& grid, const GridRayCasterOptio
   for (int iy = 0; iy < h; ++iy) {
     const auto* block_row = blocking.ptr<std::uint8_t>(iy);
     const float* distance_row = distance.ptr<float>(iy);
-    float* out = clearance_.data() + static_cast<std::size_t>(iy) * w;
+    std::uint8_t* out = codes_.data() + static_cast<std::size_t>(iy) * w;
     for (int ix = 0; ix < w; ++ix) {
-      out[ix] =
-          block_row[ix] != 0 ? kBlocking : std::max(0.0f, distance_row[ix] - kClearanceMargin);
+      if (block_row[ix] != 0) {
+        out[ix] = kBlockingCode;
+        continue;
+      }
+      const float c = std::floor(distance_row[ix] + kRoundingSlack);
+      out[ix] = static_cast<std::uint8_t>(1 + std::min(static_cast<int>(c), kMaxClearance));
     }
   }
 }
@@ -233,14 +259,14 @@ double GridRayCaster::cast_in_cells(double x, double y, double dx, double dy,
   const int edge_x = dx > 0.0 ? 1 : 0;  // which boundary of the cell the ray leaves through
   const int edge_y = dy > 0.0 ? 1 : 0;
   constexpr double kNever = std::numeric_limits<double>::infinity();
-  const float* field = clearance_.data();
+  const std::uint8_t* field = codes_.data();
   for (;;) {
-    const float c = field[static_cast<std::size_t>(iy) * w + ix];
-    if (c < 0.0f)
+    const int code = field[static_cast<std::size_t>(iy) * w + ix];
+    if (code == kBlockingCode)
       return t;
-    if (c > 0.0f) {
-      // Sphere tracing: nothing blocks within c cells of any point of this cell.
-      t += c;
+    if (code > 1) {
+      // Sphere tracing: nothing blocks within code - 1 cells of any point of this cell.
+      t += code - 1;
       if (t >= t_end)
         return max_cells;
       ix = std::min(static_cast<int>(x + t * dx), w - 1);
@@ -279,7 +305,7 @@ void GridRayCaster::cast_fan_in_cells(double x, double y, const double* dx, cons
       out[k] = cast_in_cells(x, y, dx[k], dy[k], max_cells);
     return;
   }
-  const FanContext f{clearance_.data(),
+  const FanContext f{codes_.data(),
                      _mm256_set1_pd(x),
                      _mm256_set1_pd(y),
                      _mm256_set1_pd(w),
@@ -292,16 +318,16 @@ void GridRayCaster::cast_fan_in_cells(double x, double y, const double* dx, cons
                      static_cast<double>(w),
                      static_cast<double>(h)};
   std::size_t k = 0;
-  for (; k + 8 <= count; k += 8)
-    march_eight(f, dx + k, dy + k, out + k);
+  for (; k + kRaysPerMarch <= count; k += kRaysPerMarch)
+    march(f, dx + k, dy + k, out + k);
   if (k < count) {
     // The last few rays, padded with copies of the last one.
-    double pad_dx[8], pad_dy[8], pad_out[8];
-    for (std::size_t j = 0; j < 8; ++j) {
+    double pad_dx[kRaysPerMarch], pad_dy[kRaysPerMarch], pad_out[kRaysPerMarch];
+    for (std::size_t j = 0; j < kRaysPerMarch; ++j) {
       pad_dx[j] = dx[std::min(k + j, count - 1)];
       pad_dy[j] = dy[std::min(k + j, count - 1)];
     }
-    march_eight(f, pad_dx, pad_dy, pad_out);
+    march(f, pad_dx, pad_dy, pad_out);
     std::copy(pad_out, pad_out + (count - k), out + k);
   }
 #else

@@ -229,6 +229,33 @@ TEST(GridRayCaster, EdgeCases) {
   EXPECT_EQ(GridRayCaster().cast({1.0, 1.0}, 0.7, 50.0), 50.0);
 }
 
+TEST(GridRayCaster, LargeOpenMapsCapTheClearance) {
+  // Clearances beyond 253 cells are stored as 253: rays still reach far obstacles exactly.
+  GridGeometry geometry;
+  geometry.width = 700;
+  geometry.height = 600;
+  OccupancyGrid grid(geometry, CellState::free);
+  for (int iy = 0; iy < 5; ++iy) {
+    for (int ix = 690; ix < 700; ++ix)
+      grid.set_state(ix, iy, CellState::occupied);
+  }
+  const GridRayCaster caster(grid);
+  EXPECT_EQ(caster.clearance(0, 599), 253);
+  EXPECT_EQ(caster.clearance(400, 100), 253);
+  EXPECT_EQ(caster.clearance(688, 2), 1);
+  EXPECT_EQ(caster.clearance(689, 2), 0);
+  Random random(15);
+  for (int i = 0; i < 2000; ++i) {
+    const double x = random.uniform(0.0, 700.0), y = random.uniform(0.0, 600.0);
+    // Aim at a random point of the obstacle block, or anywhere.
+    const double a =
+        i % 2 == 0 ? std::atan2(random.uniform(0.0, 5.0) - y, random.uniform(690.0, 700.0) - x)
+                   : random.uniform(-kPi, kPi);
+    const double expected = cell_walk(grid, false, x, y, std::cos(a), std::sin(a), 2000.0);
+    EXPECT_NEAR(caster.cast_in_cells(x, y, std::cos(a), std::sin(a), 2000.0), expected, 1e-6);
+  }
+}
+
 TEST(GridRayCaster, UnknownCellsAreFreeUnlessAsked) {
   GridGeometry geometry;
   geometry.width = 40;
@@ -253,9 +280,9 @@ TEST(GridRayCaster, ClearanceIsALowerBoundOnTheDistanceToBlockingCells) {
   const GridRayCaster caster(grid);
   for (int iy = 0; iy < geometry.height; ++iy) {
     for (int ix = 0; ix < geometry.width; ++ix) {
-      const float c = caster.clearance(ix, iy);
+      const int c = caster.clearance(ix, iy);
       if (grid.state(ix, iy) == CellState::occupied) {
-        EXPECT_LT(c, 0.0f);
+        EXPECT_EQ(c, -1);
         continue;
       }
       // Smallest distance between the closed squares of this cell and of any occupied cell.
@@ -269,12 +296,8 @@ TEST(GridRayCaster, ClearanceIsALowerBoundOnTheDistanceToBlockingCells) {
           nearest = std::min(nearest, std::hypot(gx, gy));
         }
       }
-      EXPECT_GE(c, 0.0f);
-      EXPECT_LE(c, nearest) << "cell " << ix << ", " << iy;
-      // And it is not wastefully small: within the safety margin of the exact value.
-      if (std::isfinite(nearest)) {
-        EXPECT_GE(c, nearest - 2e-3) << "cell " << ix << ", " << iy;
-      }
+      // Exactly the distance rounded down (a lower bound that wastes under a cell).
+      EXPECT_EQ(c, static_cast<int>(std::floor(nearest + 1e-12))) << "cell " << ix << ", " << iy;
     }
   }
 }
