@@ -1,0 +1,65 @@
+#include "floorgrid/localization/convergence.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <string>
+
+#include "floorgrid/core/error.hpp"
+
+namespace floorgrid {
+namespace {
+
+template <typename T>
+void require_option(bool valid, const char* field, T value, const char* rule) {
+  if (valid)
+    return;
+  std::ostringstream message;
+  message << "must be " << rule << " (got " << value << ")";
+  throw InputError(message.str(), {}, 0, std::string("convergence.") + field);
+}
+
+}  // namespace
+
+void validate(const ConvergenceOptions& o) {
+  require_option(o.max_position_std > 0.0, "max_position_std", o.max_position_std, "> 0 metres");
+  require_option(o.max_heading_std > 0.0, "max_heading_std", o.max_heading_std, "> 0 radians");
+  require_option(o.max_scale_std > 0.0, "max_scale_std", o.max_scale_std, "> 0");
+  require_option(o.min_ess_ratio >= 0.0 && o.min_ess_ratio <= 1.0, "min_ess_ratio", o.min_ess_ratio,
+                 "in [0, 1]");
+  require_option(o.min_beam_likelihood >= 0.0 && o.min_beam_likelihood <= 1.0,
+                 "min_beam_likelihood", o.min_beam_likelihood, "in [0, 1]");
+  require_option(o.min_converged_scans >= 1, "min_converged_scans", o.min_converged_scans, ">= 1");
+  require_option(o.max_failed_scans >= 1, "max_failed_scans", o.max_failed_scans, ">= 1");
+}
+
+ConvergenceCheck check_convergence(const PoseEstimate& estimate, double mean_beam_likelihood,
+                                   bool has_scale, const ConvergenceOptions& o) {
+  ConvergenceCheck c;
+  // Written as "within" tests so that NaN fails them.
+  c.position_ok = estimate.position_std <= o.max_position_std;
+  c.heading_ok = estimate.heading_std <= o.max_heading_std;
+  c.scale_ok = !has_scale || estimate.scale_std <= o.max_scale_std;
+  c.ess_ok = estimate.ess_ratio >= o.min_ess_ratio;
+  c.beam_ok = mean_beam_likelihood >= o.min_beam_likelihood;
+  c.criteria_met = c.position_ok && c.heading_ok && c.scale_ok && c.ess_ok && c.beam_ok;
+  return c;
+}
+
+ConvergenceMonitor::ConvergenceMonitor(const ConvergenceOptions& options) : options_(options) {
+  validate(options_);
+}
+
+const ConvergenceCheck& ConvergenceMonitor::update(const PoseEstimate& estimate,
+                                                   double mean_beam_likelihood, bool has_scale) {
+  const ConvergenceCheck previous = last_;
+  last_ = check_convergence(estimate, mean_beam_likelihood, has_scale, options_);
+  last_.consecutive_met = last_.criteria_met ? previous.consecutive_met + 1 : 0;
+  last_.consecutive_failed = last_.criteria_met ? 0 : previous.consecutive_failed + 1;
+  if (previous.converged)
+    last_.converged = last_.consecutive_failed < options_.max_failed_scans;
+  else
+    last_.converged = last_.consecutive_met >= options_.min_converged_scans;
+  return last_;
+}
+
+}  // namespace floorgrid
