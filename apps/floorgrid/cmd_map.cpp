@@ -14,9 +14,10 @@ namespace floorgrid::app {
 
 namespace {
 
-/// Maps one point (and heading) in the model's pair units.
+/// Maps one point, and its heading when `heading` is not null, in the model's pair units.
+/// (A pointer, not std::optional: GCC 12 warns falsely about optional<double> copies here.)
 io::MappedRow map_one(const PointMapping& model, const Eigen::Vector2d& point,
-                      std::optional<double> heading, bool inverse) {
+                      const double* heading, bool inverse) {
   const double unit = model.unit();
   const Eigen::Vector2d p = point * unit;
   io::MappedRow row;
@@ -66,8 +67,7 @@ void add_map_command(CLI::App& root) {
       std::vector<io::MappedRow> rows;
       rows.reserve(static_cast<std::size_t>(table.points.cols()));
       for (Eigen::Index i = 0; i < table.points.cols(); ++i) {
-        const std::optional<double> heading =
-            table.has_headings() ? std::optional<double>(table.headings[i]) : std::nullopt;
+        const double* heading = table.has_headings() ? &table.headings[i] : nullptr;
         rows.push_back(map_one(*model, table.points.col(i), heading, args->inverse));
       }
       io::write_mapped_csv(rows, table.has_headings(), args->out);
@@ -78,8 +78,7 @@ void add_map_command(CLI::App& root) {
     }
     for (const std::string& text : args->values) {
       const auto v = parse_numbers(text, "POINTS", {2, 3});
-      const std::optional<double> heading =
-          v.size() == 3 ? std::optional<double>(v[2]) : std::nullopt;
+      const double* heading = v.size() == 3 ? &v[2] : nullptr;
       const io::MappedRow row = map_one(*model, {v[0], v[1]}, heading, args->inverse);
       if (row.mapped.flag == MapFlag::not_invertible) {
         fmt::print("{} -> not_invertible\n", text);

@@ -12,17 +12,20 @@ PairRejections& PairRejections::operator+=(const PairRejections& o) {
   off_grid_wall += o.off_grid_wall;
   subsampled += o.subsampled;
   per_scan_cap += o.per_scan_cap;
+  too_far += o.too_far;
   return *this;
 }
 
 std::map<std::string, std::size_t> PairRejections::by_reason() const {
   return {{"not_converged", not_converged}, {"no_return", no_return},
           {"off_plan_wall", off_plan_wall}, {"off_grid_wall", off_grid_wall},
-          {"subsampled", subsampled},       {"per_scan_cap", per_scan_cap}};
+          {"subsampled", subsampled},       {"per_scan_cap", per_scan_cap},
+          {"too_far", too_far}};
 }
 
 std::size_t PairRejections::total() const {
-  return not_converged + no_return + off_plan_wall + off_grid_wall + subsampled + per_scan_cap;
+  return not_converged + no_return + off_plan_wall + off_grid_wall + subsampled + per_scan_cap +
+         too_far;
 }
 
 void reject_scan(const LaserScan& scan, PairRejections& rejections) {
@@ -46,6 +49,10 @@ void extract_scan_pairs(const LaserScan& scan, const Pose2& pose_in_plan, double
       continue;
     }
     const double r = scan.ranges[i];
+    if (r > options.max_range) {
+      ++rejections.too_far;
+      continue;
+    }
     const double a = laser_in_robot.theta + scan.angle(i);
     const Eigen::Vector2d end_in_robot =
         laser_in_robot.translation() + r * Eigen::Vector2d(std::cos(a), std::sin(a));

@@ -15,6 +15,9 @@ namespace floorgrid {
 struct PairExtractionOptions {
   int beam_step = 2;                ///< keep every k-th beam of a scan (beam subsampling)
   int max_pairs_per_scan = 40;      ///< then at most this many pairs per scan, evenly spread
+  /// Metres: longer readings are not used (a filter's heading error moves an endpoint by the
+  /// range times the error, so far endpoints make poor pairs); counted as `too_far`.
+  double max_range = 10.0;
   double max_wall_distance = 0.10;  ///< metres (world): an endpoint must lie this close to an
                                     ///< occupied cell of each map (drops furniture hits)
 };
@@ -27,6 +30,7 @@ struct PairRejections {
   std::size_t off_grid_wall = 0;  ///< endpoints far from every occupied gridmap cell
   std::size_t subsampled = 0;     ///< beams skipped by the beam subsampling
   std::size_t per_scan_cap = 0;   ///< valid pairs dropped by the per-scan cap
+  std::size_t too_far = 0;        ///< returns beyond PairExtractionOptions::max_range
 
   /// Adds another count.
   PairRejections& operator+=(const PairRejections& other);

@@ -186,8 +186,8 @@ Building make_office(Random& random) {
     request.area = room.interior;
     request.keep_free = building_parts::room_visit_path(room, room.doors.front());
     request.forbidden = zones;
-    request.wall_density = 0.65;
-    request.free_standing = 3;
+    request.wall_density = 0.35;
+    request.free_standing = 2;
     building_parts::furnish(b, request, random);
   }
   for (const auto& corridor : b.corridors) {
@@ -196,7 +196,7 @@ Building make_office(Random& random) {
     request.keep_free = tour_pieces;
     request.forbidden = zones;
     request.clearance = 0.55;
-    request.wall_density = 0.25;
+    request.wall_density = 0.15;
     request.free_standing = 1;
     building_parts::furnish(b, request, random);
   }

@@ -110,7 +110,7 @@ Building make_warehouse(Random& random) {
     request.area = room.interior;
     request.keep_free = building_parts::room_visit_path(room, room.doors.front());
     request.forbidden = zones;
-    request.wall_density = 0.65;
+    request.wall_density = 0.35;
     request.free_standing = 2;
     building_parts::furnish(b, request, random);
   }
@@ -122,7 +122,7 @@ Building make_warehouse(Random& random) {
     for (const auto& r : b.rack_boxes)
       request.forbidden.push_back(r);
     request.clearance = 0.9;
-    request.wall_density = 0.45;
+    request.wall_density = 0.3;
     request.free_standing = 3;
     building_parts::furnish(b, request, random);
   }

@@ -1,0 +1,54 @@
+#include "floorgrid/evaluation/model_comparison.hpp"
+
+#include <chrono>
+
+#include "floorgrid/core/error.hpp"
+
+namespace floorgrid {
+
+std::vector<ModelReport> compare_models(const ReferencePairs& pairs, const EvaluationDomain& domain,
+                                        const std::optional<GroundTruth>& truth,
+                                        const ModelComparisonOptions& options,
+                                        const ModelProgress& progress) {
+  std::vector<ModelReport> reports;
+  for (std::size_t k = 0; k < options.models.size(); ++k) {
+    const std::string& name = options.models[k];
+    if (progress) progress(name, k, options.models.size());
+    ModelReport report;
+    report.name = name;
+    MappingOptions mapping = options.mapping;
+    mapping.model = name;
+    try {
+      auto model = make_mapping(mapping);
+      report.summary = model->fit(pairs);
+      if (options.cv_folds >= 2) {
+        CrossValidationOptions cv;
+        cv.folds = options.cv_folds;
+        const CrossValidationResult r = cross_validate(mapping, pairs, cv);
+        model->set_cv_error(r.mean_error_m);
+        report.summary.cv_error_m = r.mean_error_m;
+      }
+      report.model = std::move(model);
+    } catch (const InputError& e) {
+      report.failure = e.what();
+      reports.push_back(std::move(report));
+      continue;
+    }
+    const auto start = std::chrono::steady_clock::now();
+    if (truth && domain.points_in_plan.cols() > 0) {
+      const std::vector<double> errors = model_errors(*report.model, domain.points_in_plan, *truth);
+      report.errors = error_statistics(errors);
+      report.histogram = error_histogram(errors);
+    }
+    report.back_and_forth = back_and_forth(*report.model, domain.points_in_plan,
+                                           options.back_and_forth_rounds,
+                                           options.back_and_forth_points);
+    report.evaluate_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    reports.push_back(std::move(report));
+  }
+  if (progress) progress("", options.models.size(), options.models.size());
+  return reports;
+}
+
+}  // namespace floorgrid

@@ -1,0 +1,48 @@
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "floorgrid/evaluation/domain.hpp"
+#include "floorgrid/evaluation/model_evaluation.hpp"
+#include "floorgrid/mapping/mapping_factory.hpp"
+
+namespace floorgrid {
+
+/// One model fitted to a dataset's pairs and judged.
+struct ModelReport {
+  std::string name;                       ///< model name
+  std::shared_ptr<PointMapping> model;    ///< the fitted model (null when the fit failed)
+  std::string failure;                    ///< why the fit failed (empty when it did not)
+  FitSummary summary;                     ///< the fit
+  std::optional<ErrorStatistics> errors;  ///< against the ground truth over the domain
+  std::vector<std::size_t> histogram;     ///< 0.05 m bins up to "1.0 m and more"
+  BackAndForth back_and_forth;            ///< drift of points mapped there and back
+  double evaluate_seconds = 0.0;          ///< time of the judging
+};
+
+/// Which models are fitted and how they are judged.
+struct ModelComparisonOptions {
+  /// The models fitted (SPEC: at least gt, gp, gpgt, ct, dt, tps, lc, auto).
+  std::vector<std::string> models = {"lc", "gt", "gt-rigid", "gt-affine", "ct", "gp", "gpgt", "dt", "tps", "auto"};
+  MappingOptions mapping;            ///< options of every model (`model` is set per model)
+  int cv_folds = 5;                  ///< k-fold cross-validation of each model (0: none)
+  int back_and_forth_rounds = 100;   ///< thesis 6.5
+  std::size_t back_and_forth_points = 300;  ///< domain points followed
+};
+
+/// Progress: the model being worked on, and how many are done.
+using ModelProgress = std::function<void(const std::string& model, std::size_t done, std::size_t total)>;
+
+/// Fits every model to `pairs`, cross-validates it, and (with a domain and a truth) measures its
+/// errors and its back-and-forth drift over the domain. A model that cannot be fitted is
+/// reported with its failure instead of stopping the others.
+std::vector<ModelReport> compare_models(const ReferencePairs& pairs, const EvaluationDomain& domain,
+                                        const std::optional<GroundTruth>& truth,
+                                        const ModelComparisonOptions& options,
+                                        const ModelProgress& progress = {});
+
+}  // namespace floorgrid
