@@ -13,5 +13,7 @@ void add_simulate_command(CLI::App& root);
 void add_fit_command(CLI::App& root);
 /// `floorgrid map`.
 void add_map_command(CLI::App& root);
+/// `floorgrid pairs`.
+void add_pairs_command(CLI::App& root);
 
 }  // namespace floorgrid::app

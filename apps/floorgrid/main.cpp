@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
   floorgrid::app::add_simulate_command(root);
   floorgrid::app::add_fit_command(root);
   floorgrid::app::add_map_command(root);
+  floorgrid::app::add_pairs_command(root);
 
   try {
     root.parse(argc, argv);

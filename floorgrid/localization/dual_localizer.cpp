@@ -121,13 +121,22 @@ std::optional<std::size_t> run_until_converged(ParticleFilter& filter, const Rob
   return std::nullopt;
 }
 
+/// Whether a scan gives pairs: both filters converged and, when poses are refined, both
+/// matches accepted.
+bool usable_for_pairs(const ScanRecord& r, bool refine) {
+  if (!(r.plan_converged && r.grid_converged))
+    return false;
+  return !refine || (r.plan_match.ok() && r.grid_match.ok());
+}
+
 }  // namespace
 
 DualLocalization localize_dual(const OccupancyGrid& plan, const OccupancyGrid& grid,
                                const RobotLog& log, const std::optional<StartPoses>& start,
                                const std::optional<double>& plan_scale,
                                const DualLocalizerOptions& o,
-                               const std::function<void(const DualProgress&)>& progress) {
+                               const std::function<void(const DualProgress&)>& progress,
+                               const VectorFloorplan* plan_geometry) {
   if (log.scans.size() < 2)
     throw InputError("the log needs at least two laser scans", {}, 0, "log");
   if (plan_scale && !(*plan_scale > 0.0)) {
@@ -285,8 +294,10 @@ DualLocalization localize_dual(const OccupancyGrid& plan, const OccupancyGrid& g
     grid_filter.initialize_tracking(g, grid);
   }
   UpdateGate gate(o.update_min_translation, o.update_min_rotation);
-  PairCollector pairs;
-  double pair_seconds = 0.0;
+  const WallField plan_walls =
+      plan_geometry ? WallField(*plan_geometry, plan.geometry(), o.walls) : WallField(plan, o.walls);
+  const WallField grid_walls(grid, o.walls);
+  std::size_t usable = 0;  // scans that will give pairs so far
   for (std::size_t i = 0; i < n; ++i) {
     if (i > 0) {
       const OdometryMotion motion =
@@ -306,27 +317,89 @@ DualLocalization localize_dual(const OccupancyGrid& plan, const OccupancyGrid& g
     record.grid_state = grid_filter.state();
     record.plan_converged = plan_filter.converged();
     record.grid_converged = grid_filter.converged();
+    record.plan_check = plan_filter.status().convergence;
+    record.grid_check = grid_filter.status().convergence;
+    record.plan_fit = plan_filter.status().mean_beam_likelihood;
+    record.grid_fit = grid_filter.status().mean_beam_likelihood;
     record.plan_pose = estimate_pose(plan_filter.particles()).pose;
     record.grid_pose = estimate_pose(grid_filter.particles()).pose;
-    if (record.plan_converged && record.grid_converged) {
-      const auto pair_clock = Clock::now();
-      const std::size_t before = pairs.size();
-      extract_scan_pairs(log.scans[i], record.plan_pose, scale, record.grid_pose,
-                         plan_model.field->distance_field(), grid_model.field->distance_field(),
-                         o.pairs, pairs, result.rejections);
-      record.pairs = pairs.size() - before;
-      pair_seconds += seconds_since(pair_clock);
-    } else {
-      reject_scan(log.scans[i], result.rejections);
+    if (o.refine_poses && record.plan_converged && record.grid_converged) {
+      const ScanObservation points = make_observation(log.scans[i], o.match_observation);
+      record.plan_match = match_scan(plan_walls, points, record.plan_pose, scale, o.plan_match);
+      record.grid_match = match_scan(grid_walls, points, record.grid_pose, 1.0, o.grid_match);
     }
+    usable += usable_for_pairs(record, o.refine_poses);
     result.scans.push_back(record);
-    if (i % 25 == 0 || i + 1 == n) {
-      report("localize", i + 1, n, record.plan_converged, record.grid_converged, pairs.size());
+    if (i % 25 == 0 || i + 1 == n)
+      report("localize", i + 1, n, record.plan_converged, record.grid_converged, usable);
+  }
+  result.localize_seconds = seconds_since(clock);
+
+  // ---- 3. the plan's scale refitted with the refined poses of every usable scan ----
+  if (result.plan_scale_estimated && o.refine_poses && o.refit_scale) {
+    clock = Clock::now();
+    std::vector<ScanObservation> points;
+    std::vector<Pose2> poses;
+    std::vector<std::size_t> which;
+    for (std::size_t k = 0; k < result.scans.size(); ++k) {
+      if (!usable_for_pairs(result.scans[k], true))
+        continue;
+      points.push_back(make_observation(log.scans[k], o.match_observation));
+      poses.push_back(result.scans[k].plan_match.pose);
+      which.push_back(k);
     }
+    if (points.size() >= 10) {
+      std::vector<const ScanObservation*> views;
+      for (const ScanObservation& p : points)
+        views.push_back(&p);
+      const ScaleFit fit = fit_scale(plan_walls, views, poses, scale, o.plan_match);
+      result.plan_scale_search = scale;
+      result.plan_scale_search_std = result.plan_scale_std;
+      scale = fit.scale;
+      result.plan_scale = fit.scale;
+      result.plan_scale_std = fit.scale_std;
+      for (std::size_t k = 0; k < which.size(); ++k)
+        result.scans[which[k]].plan_match.pose = fit.poses[k];
+      result.notes.push_back("plan scale refitted on " + std::to_string(fit.scans) +
+                             " scans by joint scan matching");
+    } else {
+      result.notes.push_back("too few matched scans to refit the plan scale: kept the search's");
+    }
+    result.scale_search_seconds += seconds_since(clock);
+  }
+
+  // ---- 4. pairs from every usable scan ----
+  clock = Clock::now();
+  PairCollector pairs;
+  for (ScanRecord& record : result.scans) {
+    const LaserScan& scan = log.scans[record.scan];
+    if (!(record.plan_converged && record.grid_converged)) {
+      reject_scan(scan, result.rejections);
+      continue;
+    }
+    Pose2 plan_pose = record.plan_pose, grid_pose = record.grid_pose;
+    if (o.refine_poses) {
+      const ScanMatchFailure failure = record.plan_match.ok() ? record.grid_match.failure
+                                                              : record.plan_match.failure;
+      if (failure == ScanMatchFailure::degenerate) {
+        result.rejections.degenerate += scan.ranges.size();
+        continue;
+      }
+      if (failure != ScanMatchFailure::none) {
+        result.rejections.unmatched += scan.ranges.size();
+        continue;
+      }
+      plan_pose = record.plan_match.pose;
+      grid_pose = record.grid_match.pose;
+    }
+    const std::size_t before = pairs.size();
+    extract_scan_pairs(scan, plan_pose, scale, grid_pose, plan_walls, grid_walls, o.pairs,
+                       pairs, result.rejections);
+    record.pairs = pairs.size() - before;
   }
   result.pairs = pairs.pairs();
-  result.localize_seconds = seconds_since(clock);
-  result.pairs_seconds = pair_seconds;
+  result.pairs_seconds = seconds_since(clock);
+  result.plan_scale = scale;
 
   // Convergence bookkeeping.
   std::optional<std::size_t> first;

@@ -10,7 +10,9 @@
 #include "floorgrid/localization/pair_extraction.hpp"
 #include "floorgrid/localization/particle_filter.hpp"
 #include "floorgrid/localization/robot_log.hpp"
+#include "floorgrid/localization/scan_matcher.hpp"
 #include "floorgrid/localization/scan_observation.hpp"
+#include "floorgrid/localization/wall_field.hpp"
 #include "floorgrid/maps/occupancy_grid.hpp"
 
 namespace floorgrid {
@@ -54,6 +56,17 @@ struct DualLocalizerOptions {
   ObservationOptions plan_observation{30};  ///< beams per scan of the plan filter
   ObservationOptions grid_observation{60};  ///< beams per scan of the gridmap filter
   PairExtractionOptions pairs;     ///< how endpoints become pairs
+  /// Refine both filters' mean poses by matching the scan onto each map's walls before making
+  /// pairs (a particle cloud's mean is only as sharp as the cloud; the match is sharper), and
+  /// drop the scans whose match fails or cannot pin the pose down (a corridor, an aisle).
+  bool refine_poses = true;
+  WallFieldOptions walls;                     ///< the matchers' wall lookup
+  ScanMatchOptions plan_match;                ///< scan matching on the plan
+  ScanMatchOptions grid_match;                ///< scan matching on the gridmap
+  ObservationOptions match_observation{180};  ///< beams per scan of the matching
+  /// With an unknown plan scale: refit it, with the refined plan poses of every scan used for
+  /// pairs, by a joint Gauss-Newton (fit_scale), and make the pairs with that scale.
+  bool refit_scale = true;
   /// Scales (world metres per plan metre) searched when the plan's scale is not given.
   ScaleRange scale_range{0.8, 1.25};
   /// Random walk of the scale during the search, per square root of a metre travelled.
@@ -78,6 +91,12 @@ struct ScanRecord {
   Pose2 plan_pose;        ///< the plan filter's mean pose (plan metres)
   Pose2 grid_pose;        ///< the grid filter's mean pose
   std::size_t pairs = 0;  ///< pairs made from this scan
+  /// The refined poses (when refine_poses): the matches of this scan on each map.
+  ScanMatch plan_match, grid_match;
+  /// Each filter's last convergence test (of the last scan it was updated with).
+  ConvergenceCheck plan_check, grid_check;
+  double plan_fit = 0.0;  ///< the plan filter's mean beam likelihood at its last update
+  double grid_fit = 0.0;  ///< the grid filter's
 };
 
 /// What the dual localization found.
@@ -93,6 +112,8 @@ struct DualLocalization {
   double plan_scale = 1.0;                   ///< world metres per plan metre used for the pairs
   double plan_scale_std = 0.0;               ///< its uncertainty (0 when given)
   bool plan_scale_estimated = false;         ///< whether it was searched
+  double plan_scale_search = 0.0;            ///< the particle filter's search result
+  double plan_scale_search_std = 0.0;        ///< and its spread
   std::optional<StartPoses> start;           ///< the start found by global localization (or given)
   std::size_t global_scans_plan = 0;         ///< scans the plan filter needed to converge globally
   std::size_t global_scans_grid = 0;         ///< the same for the grid filter
@@ -126,10 +147,15 @@ struct DualProgress {
 /// for `scale_search_scans` after converging; the mean and spread of the estimates over the
 /// second half of that window give the scale and its uncertainty, and the localizing pass
 /// uses that scale. InputError when a filter never converges globally.
+///
+/// `plan_geometry`, when given (a DXF plan's walls, in the plan grid's frame), is what scans
+/// are matched onto in the plan instead of the plan grid's occupied cells: exact walls, not
+/// cells.
 DualLocalization localize_dual(const OccupancyGrid& plan, const OccupancyGrid& grid,
                                const RobotLog& log, const std::optional<StartPoses>& start,
                                const std::optional<double>& plan_scale,
                                const DualLocalizerOptions& options = {},
-                               const std::function<void(const DualProgress&)>& progress = {});
+                               const std::function<void(const DualProgress&)>& progress = {},
+                               const VectorFloorplan* plan_geometry = nullptr);
 
 }  // namespace floorgrid

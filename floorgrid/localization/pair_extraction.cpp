@@ -13,6 +13,8 @@ PairRejections& PairRejections::operator+=(const PairRejections& o) {
   subsampled += o.subsampled;
   per_scan_cap += o.per_scan_cap;
   too_far += o.too_far;
+  degenerate += o.degenerate;
+  unmatched += o.unmatched;
   return *this;
 }
 
@@ -20,12 +22,13 @@ std::map<std::string, std::size_t> PairRejections::by_reason() const {
   return {{"not_converged", not_converged}, {"no_return", no_return},
           {"off_plan_wall", off_plan_wall}, {"off_grid_wall", off_grid_wall},
           {"subsampled", subsampled},       {"per_scan_cap", per_scan_cap},
-          {"too_far", too_far}};
+          {"too_far", too_far},             {"degenerate", degenerate},
+          {"unmatched", unmatched}};
 }
 
 std::size_t PairRejections::total() const {
   return not_converged + no_return + off_plan_wall + off_grid_wall + subsampled + per_scan_cap +
-         too_far;
+         too_far + degenerate + unmatched;
 }
 
 void reject_scan(const LaserScan& scan, PairRejections& rejections) {
@@ -33,8 +36,8 @@ void reject_scan(const LaserScan& scan, PairRejections& rejections) {
 }
 
 void extract_scan_pairs(const LaserScan& scan, const Pose2& pose_in_plan, double plan_scale,
-                        const Pose2& pose_in_grid, const DistanceField& plan_walls,
-                        const DistanceField& grid_walls, const PairExtractionOptions& options,
+                        const Pose2& pose_in_grid, const WallField& plan_walls,
+                        const WallField& grid_walls, const PairExtractionOptions& options,
                         PairCollector& pairs, PairRejections& rejections) {
   const Pose2 laser_in_robot = scan.robot_pose.between(scan.laser_pose);
   std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> valid;
@@ -59,11 +62,11 @@ void extract_scan_pairs(const LaserScan& scan, const Pose2& pose_in_plan, double
     const Eigen::Vector2d in_plan = pose_in_plan.transform(end_in_robot / plan_scale);
     const Eigen::Vector2d in_grid = pose_in_grid.transform(end_in_robot);
     // Furniture and clutter are in the gridmap but not in the plan: keep only wall hits.
-    if (plan_walls.at(in_plan) * plan_scale > options.max_wall_distance) {
+    if (plan_walls.distance(in_plan) * plan_scale > options.max_wall_distance) {
       ++rejections.off_plan_wall;
       continue;
     }
-    if (grid_walls.at(in_grid) > options.max_wall_distance) {
+    if (grid_walls.distance(in_grid) > options.max_wall_distance) {
       ++rejections.off_grid_wall;
       continue;
     }

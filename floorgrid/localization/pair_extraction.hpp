@@ -7,7 +7,7 @@
 #include "floorgrid/core/random.hpp"
 #include "floorgrid/localization/robot_log.hpp"
 #include "floorgrid/mapping/reference_pairs.hpp"
-#include "floorgrid/maps/distance_field.hpp"
+#include "floorgrid/localization/wall_field.hpp"
 
 namespace floorgrid {
 
@@ -31,6 +31,12 @@ struct PairRejections {
   std::size_t subsampled = 0;     ///< beams skipped by the beam subsampling
   std::size_t per_scan_cap = 0;   ///< valid pairs dropped by the per-scan cap
   std::size_t too_far = 0;        ///< returns beyond PairExtractionOptions::max_range
+  /// Beams of scans whose pose a scan match could not pin down in one of the maps (it saw only
+  /// parallel walls, a corridor or an aisle, so the pose along it is a guess).
+  std::size_t degenerate = 0;
+  /// Beams of scans a scan match rejected in one of the maps (too few endpoints on walls, or
+  /// the filter's pose needed a correction beyond the match's limits).
+  std::size_t unmatched = 0;
 
   /// Adds another count.
   PairRejections& operator+=(const PairRejections& other);
@@ -53,11 +59,11 @@ struct PairCollector {
 /// Appends the pairs of one scan taken while both filters were converged: each kept return's
 /// endpoint from the plan filter's mean pose (the robot-frame endpoint divided by the plan's
 /// scale, world metres per plan metre) and from the grid filter's mean pose; `plan_walls` and
-/// `grid_walls` give the distance to the nearest occupied cell of each map (plan metres, grid
-/// metres).
+/// `grid_walls` give the distance to the nearest wall of each map (plan metres, grid metres;
+/// WallField::distance).
 void extract_scan_pairs(const LaserScan& scan, const Pose2& pose_in_plan, double plan_scale,
-                        const Pose2& pose_in_grid, const DistanceField& plan_walls,
-                        const DistanceField& grid_walls, const PairExtractionOptions& options,
+                        const Pose2& pose_in_grid, const WallField& plan_walls,
+                        const WallField& grid_walls, const PairExtractionOptions& options,
                         PairCollector& pairs, PairRejections& rejections);
 
 /// Counts every beam of a scan as not_converged.

@@ -15,7 +15,7 @@ namespace {
 /// world is `world_per_map` times larger.
 struct Room {
   OccupancyGrid grid;
-  DistanceField walls;
+  WallField walls;
   explicit Room(double size_factor = 1.0) {
     VectorFloorplan plan;
     const double w = 10.0 * size_factor, h = 6.0 * size_factor;
@@ -26,7 +26,7 @@ struct Room {
     RasterizeOptions o;
     o.wall_thickness = 0.0;
     grid = rasterize(plan, o);
-    walls = occupied_distance_field(grid, 2.0);
+    walls = WallField(grid);
   }
 };
 

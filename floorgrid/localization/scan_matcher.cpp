@@ -1,0 +1,277 @@
+#include "floorgrid/localization/scan_matcher.hpp"
+
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+
+#include "floorgrid/core/error.hpp"
+
+namespace floorgrid {
+
+void validate(const ScanMatchOptions& o) {
+  const auto positive = [](double v, const char* field) {
+    if (!(v > 0.0) || !std::isfinite(v))
+      throw InputError("must be > 0", {}, 0, std::string("scan_match.") + field);
+  };
+  if (o.max_iterations < 1)
+    throw InputError("must be >= 1", {}, 0, "scan_match.max_iterations");
+  positive(o.max_correspondence, "max_correspondence");
+  positive(o.min_correspondence, "min_correspondence");
+  if (o.min_correspondence > o.max_correspondence)
+    throw InputError("must be <= max_correspondence", {}, 0, "scan_match.min_correspondence");
+  positive(o.robust_scale, "robust_scale");
+  positive(o.inlier_distance, "inlier_distance");
+  if (o.min_inliers < 1)
+    throw InputError("must be >= 1", {}, 0, "scan_match.min_inliers");
+  if (!(o.min_inlier_fraction >= 0.0 && o.min_inlier_fraction <= 1.0))
+    throw InputError("must be in [0, 1]", {}, 0, "scan_match.min_inlier_fraction");
+  if (!(o.min_constraint >= 0.0 && o.min_constraint <= 0.5))
+    throw InputError("must be in [0, 0.5]", {}, 0, "scan_match.min_constraint");
+  positive(o.max_correction, "max_correction");
+  positive(o.max_heading_correction, "max_heading_correction");
+  positive(o.tolerance, "tolerance");
+}
+
+std::string_view to_string(ScanMatchFailure failure) {
+  switch (failure) {
+    case ScanMatchFailure::none: return "none";
+    case ScanMatchFailure::too_few_inliers: return "too_few_inliers";
+    case ScanMatchFailure::degenerate: return "degenerate";
+    case ScanMatchFailure::too_far: return "too_far";
+  }
+  return "unknown";
+}
+
+namespace {
+
+/// One scan's normal equations at a pose and inverse scale u = 1 / scale, for the pose
+/// parameters (x, y, theta) and u: [A c; c^T d] [dpose; du] = -[b; e].
+struct Linearization {
+  Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d b = Eigen::Vector3d::Zero();
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  double d = 0.0;
+  double e = 0.0;
+  std::size_t inliers = 0;
+  double inlier_square_sum = 0.0;
+  Eigen::Matrix2d normals = Eigen::Matrix2d::Zero();  // sum over inliers of n n^T (or I / 2)
+
+  /// The weakest translation direction's share of the inliers' normals.
+  double constraint() const {
+    if (inliers == 0)
+      return 0.0;
+    const Eigen::Matrix2d m = normals / static_cast<double>(inliers);
+    return Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(m, Eigen::EigenvaluesOnly)
+        .eigenvalues()(0);
+  }
+};
+
+/// Geman-McClure IRLS weight.
+double robust_weight(double r, double c) {
+  const double k = c * c / (c * c + r * r);
+  return k * k;
+}
+
+void add_row(Linearization& l, const Eigen::Vector3d& j, double ju, double r, double w) {
+  l.A.noalias() += w * j * j.transpose();
+  l.b += w * r * j;
+  l.c += w * ju * j;
+  l.d += w * ju * ju;
+  l.e += w * ju * r;
+}
+
+Linearization linearize(const WallField& walls, const ScanObservation& scan, const Pose2& pose,
+                        double u, double gate, const ScanMatchOptions& o) {
+  Linearization l;
+  const Eigen::Matrix2d R = pose.rotation();
+  const Eigen::Vector2d t = pose.translation();
+  for (std::size_t j = 0; j < scan.size(); ++j) {
+    const Eigen::Vector2d v = R * Eigen::Vector2d(scan.end_x[j], scan.end_y[j]);
+    const Eigen::Vector2d p = t + u * v;
+    const WallPoint* wall = walls.nearest(p);
+    if (!wall)
+      continue;
+    const Eigen::Vector2d err = p - wall->point.cast<double>();
+    const double distance = err.norm();
+    if (distance > gate)
+      continue;
+    const Eigen::Vector2d dp_dtheta(-u * v.y(), u * v.x());
+    const Eigen::Vector2d n = wall->normal.cast<double>();
+    if (n.squaredNorm() > 0.5) {
+      const double r = n.dot(err);
+      add_row(l, {n.x(), n.y(), n.dot(dp_dtheta)}, n.dot(v), r, robust_weight(r, o.robust_scale));
+      if (std::abs(r) < o.inlier_distance) {
+        ++l.inliers;
+        l.inlier_square_sum += r * r;
+        l.normals.noalias() += n * n.transpose();
+      }
+    } else {
+      const double w = robust_weight(distance, o.robust_scale);
+      add_row(l, {1.0, 0.0, dp_dtheta.x()}, v.x(), err.x(), w);
+      add_row(l, {0.0, 1.0, dp_dtheta.y()}, v.y(), err.y(), w);
+      if (distance < o.inlier_distance) {
+        ++l.inliers;
+        l.inlier_square_sum += distance * distance;
+        l.normals += 0.5 * Eigen::Matrix2d::Identity();
+      }
+    }
+  }
+  return l;
+}
+
+/// Solves (A + damping) x = rhs; damping keeps unconstrained directions (a corridor's length)
+/// from moving instead of failing.
+Eigen::Vector3d solve_damped(const Eigen::Matrix3d& A, const Eigen::Vector3d& rhs) {
+  const double damping = 1e-6 * std::max(A.trace(), 1e-9);
+  const Eigen::Matrix3d M = A + damping * Eigen::Matrix3d::Identity();
+  return M.ldlt().solve(rhs);
+}
+
+/// The gate of iteration k: max_correspondence shrinking by 0.7 per iteration to the minimum.
+double gate_at(int k, const ScanMatchOptions& o) {
+  return std::max(o.min_correspondence, o.max_correspondence * std::pow(0.7, k));
+}
+
+Pose2 moved(const Pose2& pose, const Eigen::Vector3d& step) {
+  return {pose.x + step.x(), pose.y + step.y(), normalize_angle(pose.theta + step.z())};
+}
+
+}  // namespace
+
+ScanMatch match_scan(const WallField& walls, const ScanObservation& scan, const Pose2& initial,
+                     double scale, const ScanMatchOptions& o) {
+  validate(o);
+  if (!(scale > 0.0))
+    throw InputError("must be > 0", {}, 0, "scan_match.scale");
+  ScanMatch m;
+  m.pose = initial;
+  m.endpoints = scan.size();
+  const double u = 1.0 / scale;
+  for (int k = 0; k < o.max_iterations; ++k) {
+    const double gate = gate_at(k, o);
+    const Linearization l = linearize(walls, scan, m.pose, u, gate, o);
+    m.iterations = k + 1;
+    if (l.A.trace() <= 0.0)
+      break;
+    const Eigen::Vector3d step = solve_damped(l.A, -l.b);
+    m.pose = moved(m.pose, step);
+    if (gate <= o.min_correspondence && step.head<2>().norm() < o.tolerance &&
+        std::abs(step.z()) < o.tolerance)
+      break;
+  }
+  const Linearization l = linearize(walls, scan, m.pose, u, o.min_correspondence, o);
+  m.inliers = l.inliers;
+  m.rms = l.inliers ? std::sqrt(l.inlier_square_sum / static_cast<double>(l.inliers)) : 0.0;
+  m.constraint = l.constraint();
+  const double fraction =
+      m.endpoints ? static_cast<double>(m.inliers) / static_cast<double>(m.endpoints) : 0.0;
+  if (m.inliers < o.min_inliers || fraction < o.min_inlier_fraction) {
+    m.failure = ScanMatchFailure::too_few_inliers;
+  } else if (m.constraint < o.min_constraint) {
+    m.failure = ScanMatchFailure::degenerate;
+  } else if ((m.pose.translation() - initial.translation()).norm() > o.max_correction ||
+             std::abs(normalize_angle(m.pose.theta - initial.theta)) > o.max_heading_correction) {
+    m.failure = ScanMatchFailure::too_far;
+  }
+  return m;
+}
+
+ScaleFit fit_scale(const WallField& walls, std::span<const ScanObservation* const> scans,
+                   std::span<const Pose2> poses, double initial_scale,
+                   const ScanMatchOptions& o, int max_iterations, int jackknife_blocks) {
+  validate(o);
+  if (scans.size() != poses.size() || scans.empty())
+    throw InputError("needs as many poses as scans, at least one", {}, 0, "scale_fit.scans");
+  if (!(initial_scale > 0.0))
+    throw InputError("must be > 0", {}, 0, "scale_fit.initial_scale");
+  ScaleFit fit;
+  // Each pose first matched alone at the initial scale (coarse to fine); the scans that do not
+  // match at all (too few inliers, or a pose that had to move far) stay out of the fit.
+  std::vector<std::size_t> used;
+  fit.poses.assign(poses.begin(), poses.end());
+  for (std::size_t i = 0; i < scans.size(); ++i) {
+    const ScanMatch m = match_scan(walls, *scans[i], poses[i], initial_scale, o);
+    fit.poses[i] = m.pose;
+    if (m.failure == ScanMatchFailure::none || m.failure == ScanMatchFailure::degenerate)
+      used.push_back(i);
+  }
+  double u = 1.0 / initial_scale;
+  fit.scans = used.size();
+  if (used.empty()) {
+    fit.scale = initial_scale;
+    return fit;
+  }
+  std::vector<Linearization> lin(used.size());
+  std::vector<Eigen::LDLT<Eigen::Matrix3d>> solvers(used.size());
+  const auto linearize_all = [&] {
+    for (std::size_t k = 0; k < used.size(); ++k) {
+      lin[k] = linearize(walls, *scans[used[k]], fit.poses[used[k]], u, o.min_correspondence, o);
+      const double damping = 1e-6 * std::max(lin[k].A.trace(), 1e-9);
+      solvers[k].compute(lin[k].A + damping * Eigen::Matrix3d::Identity());
+    }
+  };
+  for (int it = 0; it < max_iterations; ++it) {
+    linearize_all();
+    // Schur complement on u: (sum d - c^T A^-1 c) du = -(sum e - c^T A^-1 b).
+    double s = 0.0, g = 0.0;
+    for (std::size_t k = 0; k < used.size(); ++k) {
+      s += lin[k].d - lin[k].c.dot(solvers[k].solve(lin[k].c));
+      g += lin[k].e - lin[k].c.dot(solvers[k].solve(lin[k].b));
+    }
+    const double du = s > 0.0 ? -g / s : 0.0;
+    double largest = std::abs(du);
+    for (std::size_t k = 0; k < used.size(); ++k) {
+      const Eigen::Vector3d step = -solvers[k].solve(lin[k].b + lin[k].c * du);
+      fit.poses[used[k]] = moved(fit.poses[used[k]], step);
+      largest = std::max(largest, step.cwiseAbs().maxCoeff());
+    }
+    u += du;
+    fit.iterations = it + 1;
+    if (largest < o.tolerance)
+      break;
+  }
+  // Jackknife at the solution: leaving block B out moves u by -(G - g_B) / (S - S_B).
+  linearize_all();
+  std::vector<double> s_of(used.size()), g_of(used.size());
+  double S = 0.0, G = 0.0;
+  fit.residuals = 0;
+  for (std::size_t k = 0; k < used.size(); ++k) {
+    s_of[k] = lin[k].d - lin[k].c.dot(solvers[k].solve(lin[k].c));
+    g_of[k] = lin[k].e - lin[k].c.dot(solvers[k].solve(lin[k].b));
+    S += s_of[k];
+    G += g_of[k];
+    fit.residuals += lin[k].inliers;
+  }
+  const int blocks = std::clamp<int>(jackknife_blocks, 2, static_cast<int>(used.size()));
+  std::vector<double> estimates;
+  if (used.size() >= 2 && S > 0.0) {
+    for (int b = 0; b < blocks; ++b) {
+      const std::size_t from = used.size() * b / blocks, to = used.size() * (b + 1) / blocks;
+      double sb = 0.0, gb = 0.0;
+      for (std::size_t k = from; k < to; ++k) {
+        sb += s_of[k];
+        gb += g_of[k];
+      }
+      if (S - sb > 0.0)
+        estimates.push_back(u - (G - gb) / (S - sb));
+    }
+  }
+  double std_u = 0.0;
+  if (estimates.size() >= 2) {
+    double mean = 0.0;
+    for (const double e : estimates)
+      mean += e;
+    mean /= static_cast<double>(estimates.size());
+    double sum = 0.0;
+    for (const double e : estimates)
+      sum += (e - mean) * (e - mean);
+    const double k = static_cast<double>(estimates.size());
+    std_u = std::sqrt((k - 1.0) / k * sum);
+  }
+  fit.scale = 1.0 / u;
+  fit.scale_std = std_u / (u * u);
+  return fit;
+}
+
+}  // namespace floorgrid

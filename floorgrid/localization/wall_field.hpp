@@ -1,0 +1,82 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <vector>
+
+#include "floorgrid/maps/occupancy_grid.hpp"
+#include "floorgrid/maps/vector_floorplan.hpp"
+
+namespace floorgrid {
+
+/// A wall point a scan endpoint can be matched to: where it is and which way the wall faces.
+struct WallPoint {
+  Eigen::Vector2f point;   ///< map frame, metres
+  /// Unit normal of the wall there, or zero where the wall has no clear direction (a corner,
+  /// a post): such points are matched point to point.
+  Eigen::Vector2f normal;
+};
+
+/// Settings of a WallField.
+struct WallFieldOptions {
+  /// Metres: cells farther than this from every wall have no nearest wall point (bounds the
+  /// correspondences of a scan matcher; > 0).
+  double max_distance = 1.0;
+  /// Cells: a wall cell's normal comes from the occupied cells within this radius (>= 1).
+  int normal_radius = 2;
+  /// A wall cell gets a normal when the smaller eigenvalue of its neighbours' scatter is at
+  /// most this share of the larger one (a line: ~0; a wall drawn as two lines one cell apart:
+  /// ~0.3; a corner or blob: ~1), in (0, 1).
+  double max_flatness = 0.5;
+};
+
+/// Throws InputError naming `wall_field.<field>` when an option is out of range.
+void validate(const WallFieldOptions& options);
+
+/// For every cell of an occupancy grid, the nearest occupied cell's centre (within
+/// max_distance) and the local wall normal there: O(1) correspondences for scan matching.
+/// Built once per map in O(cells) (OpenCV's labelled distance transform); immutable after
+/// construction and safe to share between threads.
+class WallField {
+ public:
+  /// An empty field (every lookup finds nothing).
+  WallField() = default;
+  /// The field of `grid`'s occupied cells. Throws InputError on bad options.
+  explicit WallField(const OccupancyGrid& grid, const WallFieldOptions& options = {});
+  /// The field of a vector plan's exact walls over the cells of `geometry`: each cell a wall
+  /// passes through holds the wall's point nearest the cell centre and the wall's own normal
+  /// (arcs as chords of at most a tenth of a cell's deviation), so a match is not limited by
+  /// the cells' size. Throws InputError on bad options.
+  WallField(const VectorFloorplan& plan, const GridGeometry& geometry,
+            const WallFieldOptions& options = {});
+
+  /// The nearest wall point to `point_in_map` (the one nearest the centre of the cell holding
+  /// it), or null when the point is off the grid or farther than max_distance from every wall.
+  const WallPoint* nearest(const Eigen::Vector2d& point_in_map) const {
+    const Eigen::Vector2d c = geometry_.to_cell_coordinates(point_in_map);
+    const int ix = static_cast<int>(std::floor(c.x()));
+    const int iy = static_cast<int>(std::floor(c.y()));
+    if (!geometry_.contains(ix, iy))
+      return nullptr;
+    const std::int32_t k = nearest_[static_cast<std::size_t>(iy) * geometry_.width + ix];
+    return k < 0 ? nullptr : &walls_[static_cast<std::size_t>(k)];
+  }
+  /// Map metres from `point_in_map` to the nearest wall: along the wall's normal where it has
+  /// one (the distance to the wall's line), else to the wall point; +infinity when nearest()
+  /// finds nothing.
+  double distance(const Eigen::Vector2d& point_in_map) const;
+  /// Every wall point (one per occupied cell).
+  const std::vector<WallPoint>& walls() const { return walls_; }
+  /// The grid's geometry.
+  const GridGeometry& geometry() const { return geometry_; }
+
+ private:
+  // Fills nearest_ from the cells holding a wall (wall_of_cell: index into walls_, or -1).
+  void build_lookup(const std::vector<std::int32_t>& wall_of_cell, double max_distance);
+
+  GridGeometry geometry_;
+  std::vector<WallPoint> walls_;
+  std::vector<std::int32_t> nearest_;  // per cell: index into walls_, or -1
+};
+
+}  // namespace floorgrid
