@@ -1,15 +1,24 @@
-// Accuracy of the dual Monte Carlo localization on a simulated dataset, against its truth.json:
-// each filter's pose error over the scans where both were converged, the pair error, the scale,
-// the convergence and the timings. Usage: localization_accuracy_eval DATASET [seed]
+// Accuracy of the dual Monte Carlo localization on a dataset. On a simulated dataset (with a
+// truth.json): each filter's pose error over the scans where both were converged, the refined
+// poses' errors, the pair error and the scale against the truth. On real data: where the plan
+// filter stands against the whole gridmap registered on the plan (one similarity, a rough
+// reference). Always: the convergence timeline, why filters were not converged, divergences,
+// timings. Usage: localization_accuracy_eval DATASET [--global] [--pictures PREFIX]
+//   [--from S --to S --every K]
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <chrono>
+#include <cstring>
 #include <fstream>
+#include <functional>
+#include <map>
 #include <nlohmann/json.hpp>
 
+#include "floorgrid/evaluation/overlay.hpp"
 #include "floorgrid/io/dataset_loader.hpp"
+#include "floorgrid/io/image_io.hpp"
 #include "floorgrid/localization/dual_localizer.hpp"
-#include "floorgrid/localization/scan_matcher.hpp"
 
 using namespace floorgrid;
 
@@ -29,125 +38,326 @@ struct Stats {
 
 double wrap(double a) { return std::remainder(a, 2.0 * M_PI); }
 
+/// One character per 10 scans.
+void print_line(const std::string& title, const std::string& line) {
+  fmt::print("{}\n", title);
+  for (std::size_t i = 0; i < line.size(); i += 100)
+    fmt::print("  {:5d} {}\n", i * 10, line.substr(i, 100));
+}
+
+std::string timeline(const DualLocalization& r,
+                     const std::function<char(std::size_t, std::size_t)>& of_block) {
+  std::string line;
+  for (std::size_t i = 0; i < r.scans.size(); i += 10)
+    line += of_block(i, std::min(r.scans.size(), i + 10));
+  return line;
+}
+
+void why_not_converged(const DualLocalization& r, bool plan) {
+  std::size_t pos = 0, head = 0, ess = 0, beam = 0, scale = 0, count = 0;
+  for (const ScanRecord& s : r.scans) {
+    const FilterRecord& f = plan ? s.plan : s.grid;
+    if (f.converged || f.state == FilterState::uninitialized)
+      continue;
+    ++count;
+    pos += !f.check.position_ok;
+    head += !f.check.heading_ok;
+    ess += !f.check.ess_ok;
+    beam += !f.check.beam_ok;
+    scale += !f.check.scale_ok;
+  }
+  fmt::print("{} not converged on {} scans: position {} heading {} ess {} fit {} scale {}\n",
+             plan ? "plan" : "grid", count, pos, head, ess, beam, scale);
+}
+
+/// The gridmap's occupied cells registered on the plan (a rough reference for real data).
+PlanRegistration register_whole_map(const io::LoadedDataset& d) {
+  const GridGeometry& g = d.gridmap.geometry();
+  std::map<std::pair<int, int>, Eigen::Vector2d> bins;
+  const Pose2 centre{g.bounds().center().x(), g.bounds().center().y(), 0.0};
+  for (int iy = 0; iy < g.height; ++iy)
+    for (int ix = 0; ix < g.width; ++ix)
+      if (d.gridmap.state(ix, iy) == CellState::occupied) {
+        const Eigen::Vector2d p = g.cell_center(ix, iy) - centre.translation();
+        bins.emplace(std::pair<int, int>(static_cast<int>(std::floor(p.x() / 0.25)),
+                                         static_cast<int>(std::floor(p.y() / 0.25))),
+                     p);
+      }
+  ScanObservation cloud;
+  for (const auto& [k, p] : bins) {
+    cloud.angle.push_back(0.0f);
+    cloud.range.push_back(static_cast<float>(p.norm()));
+    cloud.end_x.push_back(static_cast<float>(p.x()));
+    cloud.end_y.push_back(static_cast<float>(p.y()));
+    cloud.beam.push_back(0);
+  }
+  LikelihoodFieldOptions lo;
+  lo.sigma_hit = 0.3;
+  const LikelihoodFieldModel model(d.plan_grid, lo);
+  PlanRegistrationOptions ro;
+  ro.seeding.position_step = 0.5;
+  const PlanRegistrationResult result =
+      register_on_plan(d.plan_grid, model, cloud, centre, ScaleRange{0.8, 1.3}, 1.0, ro);
+  return result.registration;
+}
+
+void pictures(const io::LoadedDataset& d, const DualLocalization& r, const std::string& prefix,
+              std::size_t from, std::size_t to, std::size_t every) {
+  // Each filter's trajectory (green converged, red not) and every k-th scan's endpoints.
+  for (const bool plan : {true, false}) {
+    const OccupancyGrid& map = plan ? d.plan_grid : d.gridmap;
+    RgbImage picture = grid_picture(map);
+    for (const ScanRecord& s : r.scans) {
+      if (s.scan < from || s.scan >= to)
+        continue;
+      const FilterRecord& f = plan ? s.plan : s.grid;
+      if (f.state == FilterState::uninitialized)
+        continue;
+      Eigen::Matrix2Xd at(2, 1);
+      at.col(0) = f.pose.translation();
+      draw_points(picture, map.geometry(), at,
+                  f.converged ? Colour{0, 160, 0} : Colour{220, 0, 0}, 0);
+      if (s.scan % every == 0) {
+        const ScanObservation obs = make_observation(d.log->scans[s.scan], {180});
+        Eigen::Matrix2Xd ends(2, static_cast<Eigen::Index>(obs.size()));
+        const double k = plan ? 1.0 / r.plan_scale : 1.0;
+        for (std::size_t j = 0; j < obs.size(); ++j)
+          ends.col(static_cast<Eigen::Index>(j)) =
+              f.pose.transform(k * Eigen::Vector2d(obs.end_x[j], obs.end_y[j]));
+        draw_points(picture, map.geometry(), ends, Colour{0, 0, 255}, 0);
+      }
+    }
+    io::write_png_rgb(prefix + (plan ? "_plan.png" : "_grid.png"), picture.width, picture.height,
+                      picture.rgb);
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    fmt::print(stderr, "usage: {} DATASET [seed]\n", argv[0]);
+    fmt::print(stderr, "usage: {} DATASET [--global] [--pictures PREFIX] [--from S --to S --every K]\n",
+               argv[0]);
     return 2;
+  }
+  bool global = false;
+  std::string picture_prefix;
+  std::size_t from = 0, to = SIZE_MAX, every = 50;
+  bool plan_beam = false;
+  std::size_t plan_particles = 0;
+  int plan_beams = 0;
+  double plan_sigma = 0.0, beam_sigma = 0.0, beam_temp = 0.0;
+  bool no_proposal = false, bad_pairs = false;
+  double local_d = 0, local_h = 0;
+  for (int i = 2; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--global")
+      global = true;
+    else if (a == "--pictures" && i + 1 < argc)
+      picture_prefix = argv[++i];
+    else if (a == "--from" && i + 1 < argc)
+      from = std::stoul(argv[++i]);
+    else if (a == "--to" && i + 1 < argc)
+      to = std::stoul(argv[++i]);
+    else if (a == "--every" && i + 1 < argc)
+      every = std::stoul(argv[++i]);
+    else if (a == "--plan-beam")
+      plan_beam = true;
+    else if (a == "--plan-particles" && i + 1 < argc)
+      plan_particles = std::stoul(argv[++i]);
+    else if (a == "--plan-beams" && i + 1 < argc)
+      plan_beams = std::stoi(argv[++i]);
+    else if (a == "--plan-sigma" && i + 1 < argc)
+      plan_sigma = std::stod(argv[++i]);
+    else if (a == "--beam-sigma" && i + 1 < argc)
+      beam_sigma = std::stod(argv[++i]);
+    else if (a == "--beam-weight" && i + 1 < argc)
+      beam_temp = std::stod(argv[++i]);
+    else if (a == "--local" && i + 2 < argc) {
+      local_d = std::stod(argv[++i]);
+      local_h = std::stod(argv[++i]);
+    } else if (a == "--bad-pairs")
+      bad_pairs = true;
+    else if (a == "--no-proposal")
+      no_proposal = true;
   }
   const io::LoadedDataset d = io::load_dataset(argv[1]);
   DualLocalizerOptions o;
-  if (argc > 2)
-    o.seed = std::stoull(argv[2]);
-  if (const char* e = std::getenv("FG_ESS")) {
-    o.plan_filter.convergence.min_ess_ratio = std::atof(e);
-    o.grid_filter.convergence.min_ess_ratio = std::atof(e);
+  if (plan_beam)
+    o.plan_model = ObservationModelKind::beam;
+  if (plan_particles)
+    o.plan_filter.tracking_particles = plan_particles;
+  if (plan_beams)
+    o.plan_observation.max_beams = plan_beams;
+  if (plan_sigma > 0)
+    o.plan_likelihood.sigma_hit = plan_sigma;
+  if (beam_sigma > 0)
+    o.beam.sigma_hit = beam_sigma;
+  if (beam_temp > 0)
+    o.beam.beam_weight = beam_temp;
+  if (local_d > 0) {
+    o.local_distance = local_d;
+    o.local_heading = local_h;
   }
+  if (no_proposal)
+    o.plan_runner.improved_proposal = o.grid_runner.improved_proposal = false;
   std::optional<StartPoses> start;
-  if (d.manifest.initial_pose && !std::getenv("FG_GLOBAL"))
+  if (d.manifest.initial_pose && !global)
     start = StartPoses{d.manifest.initial_pose->plan, d.manifest.initial_pose->grid};
+  const auto t0 = std::chrono::steady_clock::now();
   const DualLocalization r =
       localize_dual(d.plan_grid, d.gridmap, *d.log, start, d.manifest.floorplan_scale, o, {},
                     d.plan ? &*d.plan : nullptr);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+  print_line("converged (# both, p plan only, g grid only, . neither)",
+             timeline(r, [&](std::size_t a, std::size_t b) {
+               int both = 0, plan = 0, grid = 0;
+               for (std::size_t k = a; k < b; ++k) {
+                 both += r.scans[k].plan.converged && r.scans[k].grid.converged;
+                 plan += r.scans[k].plan.converged;
+                 grid += r.scans[k].grid.converged;
+               }
+               return both >= 5 ? '#' : plan >= 5 ? 'p' : grid >= 5 ? 'g' : '.';
+             }));
+  for (const bool plan : {false, true}) {
+    print_line(std::string(plan ? "plan" : "grid") + " fit (tenths; - no information)",
+               timeline(r, [&](std::size_t a, std::size_t b) {
+                 double f = 0;
+                 int n = 0;
+                 for (std::size_t k = a; k < b; ++k) {
+                   const double v = plan ? r.scans[k].plan.fit : r.scans[k].grid.fit;
+                   if (std::isfinite(v)) {
+                     f += v;
+                     ++n;
+                   }
+                 }
+                 return n == 0 ? '-' : static_cast<char>('0' + std::min(9, static_cast<int>(10 * f / n)));
+               }));
+    why_not_converged(r, plan);
+  }
+  std::size_t reinit = 0;
+  for (const ScanRecord& s : r.scans)
+    reinit += s.plan_reinitialized;
+  fmt::print("start     grid scan {} at {:.2f},{:.2f},{:.2f}; plan scan {} at {:.2f},{:.2f},{:.2f}\n",
+             r.grid_start_scan, r.start.grid.x, r.start.grid.y, r.start.grid.theta,
+             r.plan_start_scan, r.start.plan.x, r.start.plan.y, r.start.plan.theta);
+  fmt::print("scale     {:.5f} +- {:.5f} (search {:.5f} +- {:.5f})\n", r.plan_scale,
+             r.plan_scale_std, r.plan_scale_search, r.plan_scale_search_std);
+  fmt::print("converged {:.3f} in {} periods; plan re-initialized {} times; corrections plan {} grid {}\n",
+             r.converged_fraction, r.converged_periods.size(), reinit, r.plan_corrections,
+             r.grid_corrections);
+  for (const auto* dc : {&r.plan_divergences, &r.grid_divergences})
+    for (const auto& [k, v] : dc->by_reason)
+      fmt::print("  {} diverged: {} x {}\n", dc == &r.plan_divergences ? "plan" : "grid", v, k);
+  for (const auto& [k, v] : r.rejections.by_reason())
+    fmt::print("  rejected {}: {}\n", k, v);
+  fmt::print("time      {:.1f} s: global {:.1f} s, scale {:.1f} s, localize {:.1f} s, pairs {:.1f} s\n",
+             seconds, r.global_localization_seconds, r.scale_search_seconds, r.localize_seconds,
+             r.pairs_seconds);
+  for (const auto& n : r.notes)
+    fmt::print("note      {}\n", n);
+  if (!picture_prefix.empty())
+    pictures(d, r, picture_prefix, from, to, every);
+
+  if (!d.truth_warp) {
+    const PlanRegistration whole = register_whole_map(d);
+    print_line("plan pose vs the whole gridmap registered on the plan (0 <0.25, 1 <0.5, 2 <1, 3 <2, 9 more m)",
+               timeline(r, [&](std::size_t a, std::size_t b) {
+                 double e = 0;
+                 int n = 0;
+                 for (std::size_t k = a; k < b; ++k) {
+                   if (!r.scans[k].grid.converged || !r.scans[k].plan.converged)
+                     continue;
+                   e += (whole.plan_pose(r.scans[k].grid.pose).translation() -
+                         r.scans[k].plan.pose.translation()).norm();
+                   ++n;
+                 }
+                 if (n == 0)
+                   return '-';
+                 e /= n;
+                 return e < 0.25 ? '0' : e < 0.5 ? '1' : e < 1.0 ? '2' : e < 2.0 ? '3' : '9';
+               }));
+    fmt::print("pairs     {}\n", r.pairs.size());
+    return 0;
+  }
 
   std::ifstream in(d.manifest.folder() / "truth.json");
   const nlohmann::json truth = nlohmann::json::parse(in);
   const double plan_per_world = truth["plan"]["plan_per_world"];
-  const auto& poses = truth["trajectory"]["poses"];
-  // time -> row (truth is sampled at the odometry period; scans fall on those times)
-  std::map<long, std::vector<double>> by_time;
-  for (const auto& p : poses)
+  std::map<long, std::vector<double>> by_time;  // truth at the odometry period, by time
+  for (const auto& p : truth["trajectory"]["poses"])
     by_time[std::lround(p[0].get<double>() * 1000)] = p.get<std::vector<double>>();
-  const WallField grid_walls(d.gridmap);
-  const WallField plan_walls = d.plan ? WallField(*d.plan, d.plan_grid.geometry()) : WallField(d.plan_grid);
-  Stats tgrid_pos, tgrid_head, tplan_pos, tplan_head;
-  Stats plan_pos, plan_head, grid_pos, grid_head, pair, mplan_pos, mplan_head, mgrid_pos, mgrid_head;
+  Stats plan_pos, plan_head, grid_pos, grid_head, mplan_pos, mplan_head, mgrid_pos, mgrid_head,
+      pair;
   for (const ScanRecord& s : r.scans) {
-    if (!(s.plan_converged && s.grid_converged))
+    if (!(s.plan.converged && s.grid.converged))
       continue;
     const auto it = by_time.find(std::lround(d.log->scans[s.scan].timestamp * 1000));
     if (it == by_time.end())
       continue;
     const auto& t = it->second;
-    plan_pos.v.push_back(
-        std::hypot(s.plan_pose.x - t[1] * plan_per_world, s.plan_pose.y - t[2] * plan_per_world));
-    plan_head.v.push_back(std::abs(wrap(s.plan_pose.theta - t[3])));
-    grid_pos.v.push_back(std::hypot(s.grid_pose.x - t[4], s.grid_pose.y - t[5]));
-    grid_head.v.push_back(std::abs(wrap(s.grid_pose.theta - t[6])));
-    {
-      const ScanObservation obs = make_observation(d.log->scans[s.scan], {180});
-      const ScanMatch g = match_scan(grid_walls, obs, Pose2{t[4], t[5], t[6]}, 1.0);
-      tgrid_pos.v.push_back(std::hypot(g.pose.x - t[4], g.pose.y - t[5]));
-      tgrid_head.v.push_back(std::abs(wrap(g.pose.theta - t[6])));
-      const ScanMatch p = match_scan(plan_walls, obs,
-                                     Pose2{t[1] * plan_per_world, t[2] * plan_per_world, t[3]},
-                                     1.0 / plan_per_world);
-      tplan_pos.v.push_back(std::hypot(p.pose.x - t[1] * plan_per_world, p.pose.y - t[2] * plan_per_world));
-      tplan_head.v.push_back(std::abs(wrap(p.pose.theta - t[3])));
-    }
-    if (s.plan_match.ok() && s.grid_match.ok()) {
-      const Pose2& p = s.plan_match.pose;
-      const Pose2& g = s.grid_match.pose;
-      mplan_pos.v.push_back(std::hypot(p.x - t[1] * plan_per_world, p.y - t[2] * plan_per_world));
-      mplan_head.v.push_back(std::abs(wrap(p.theta - t[3])));
-      mgrid_pos.v.push_back(std::hypot(g.x - t[4], g.y - t[5]));
-      mgrid_head.v.push_back(std::abs(wrap(g.theta - t[6])));
-    }
+    const auto add = [&](const Pose2& p, const Pose2& g, Stats& pp, Stats& ph, Stats& gp,
+                         Stats& gh) {
+      pp.v.push_back(std::hypot(p.x - t[1] * plan_per_world, p.y - t[2] * plan_per_world));
+      ph.v.push_back(std::abs(wrap(p.theta - t[3])));
+      gp.v.push_back(std::hypot(g.x - t[4], g.y - t[5]));
+      gh.v.push_back(std::abs(wrap(g.theta - t[6])));
+    };
+    add(s.plan.pose, s.grid.pose, plan_pos, plan_head, grid_pos, grid_head);
+    if (s.plan.match.ok() && s.grid.match.ok())
+      add(s.plan.match.pose, s.grid.match.pose, mplan_pos, mplan_head, mgrid_pos, mgrid_head);
   }
-  const auto tally = [&](bool plan) {
-    std::size_t pos = 0, head = 0, ess = 0, beam = 0, scale = 0, not_conv = 0;
-    for (const ScanRecord& s : r.scans) {
-      const ConvergenceCheck& c = plan ? s.plan_check : s.grid_check;
-      if ((plan ? s.plan_converged : s.grid_converged))
-        continue;
-      ++not_conv;
-      pos += !c.position_ok;
-      head += !c.heading_ok;
-      ess += !c.ess_ok;
-      beam += !c.beam_ok;
-      scale += !c.scale_ok;
-    }
-    fmt::print("{} not converged on {} scans: position {} heading {} ess {} beam {} scale {}\n",
-               plan ? "plan" : "grid", not_conv, pos, head, ess, beam, scale);
+  const auto error_char = [](double e) {
+    return e < 0.05 ? '0' : e < 0.1 ? '1' : e < 0.25 ? '2' : e < 0.5 ? '3' : e < 1.0 ? '4' : '9';
   };
-  tally(true);
-  tally(false);
-  for (Eigen::Index i = 0; i < r.pairs.size(); ++i) {
-    pair.v.push_back(
-        (d.truth_warp->plan_to_grid(r.pairs.points_in_plan.col(i)) - r.pairs.points_in_grid.col(i))
-            .norm());
-  }
-  if (std::getenv("FG_DUMP")) {
+  for (const bool plan : {true, false})
+    print_line(std::string(plan ? "plan" : "grid") +
+                   " filter error vs truth (0 <5 cm, 1 <10, 2 <25, 3 <50, 4 <100, 9 more)",
+               timeline(r, [&](std::size_t a, std::size_t b) {
+                 double e = 0;
+                 int n = 0;
+                 for (std::size_t k = a; k < b; ++k) {
+                   const FilterRecord& f = plan ? r.scans[k].plan : r.scans[k].grid;
+                   const auto it = by_time.find(std::lround(d.log->scans[k].timestamp * 1000));
+                   if (it == by_time.end() || f.state == FilterState::uninitialized)
+                     continue;
+                   const auto& t = it->second;
+                   e += plan ? std::hypot(f.pose.x - t[1] * plan_per_world, f.pose.y - t[2] * plan_per_world)
+                             : std::hypot(f.pose.x - t[4], f.pose.y - t[5]);
+                   ++n;
+                 }
+                 return n ? error_char(e / n) : '-';
+               }));
+  for (Eigen::Index i = 0; i < r.pairs.size(); ++i)
+    pair.v.push_back((d.truth_warp->plan_to_grid(r.pairs.points_in_plan.col(i)) -
+                      r.pairs.points_in_grid.col(i))
+                         .norm());
+  if (bad_pairs) {
     Eigen::Index k = 0;
     for (const ScanRecord& s : r.scans) {
-      double worst = 0.0;
-      for (std::size_t j = 0; j < s.pairs; ++j, ++k)
+      double worst = 0.0, sum = 0.0;
+      for (std::size_t j = 0; j < s.pairs; ++j, ++k) {
         worst = std::max(worst, pair.v[static_cast<std::size_t>(k)]);
-      if (worst > 0.2) {
-        fmt::print("scan {} pairs {} worst {:.3f} plan in {} c {:.3f} rms {:.3f} grid in {} c {:.3f} rms {:.3f}\n",
-                   s.scan, s.pairs, worst, s.plan_match.inliers, s.plan_match.constraint,
-                   s.plan_match.rms, s.grid_match.inliers, s.grid_match.constraint,
-                   s.grid_match.rms);
+        sum += pair.v[static_cast<std::size_t>(k)];
+      }
+      if (s.pairs && sum / s.pairs > 0.15) {
+        const auto it = by_time.find(std::lround(d.log->scans[s.scan].timestamp * 1000));
+        const auto& t = it->second;
+        fmt::print("scan {} pairs {} mean {:.3f} worst {:.3f}; plan match err {:.3f} m {:.2f} deg in {}/{} c {:.2f}; grid match err {:.3f} m {:.2f} deg\n",
+                   s.scan, s.pairs, sum / s.pairs, worst,
+                   std::hypot(s.plan.match.pose.x - t[1] * plan_per_world, s.plan.match.pose.y - t[2] * plan_per_world),
+                   wrap(s.plan.match.pose.theta - t[3]) * 180 / M_PI, s.plan.match.inliers, s.plan.match.endpoints, s.plan.match.constraint,
+                   std::hypot(s.grid.match.pose.x - t[4], s.grid.match.pose.y - t[5]), wrap(s.grid.match.pose.theta - t[6]) * 180 / M_PI);
       }
     }
   }
-  fmt::print("scale     {:.5f} +- {:.5f} (true {:.5f})\n", r.plan_scale, r.plan_scale_std,
-             1.0 / plan_per_world);
-  fmt::print("converged {:.3f}, divergences plan {} grid {}, {} periods\n", r.converged_fraction,
-             r.plan_divergences, r.grid_divergences, r.converged_periods.size());
-  fmt::print("plan pos  {}\nplan head {} deg\n", plan_pos.text(), plan_head.text(180 / M_PI));
-  fmt::print("grid pos  {}\ngrid head {} deg\n", grid_pos.text(), grid_head.text(180 / M_PI));
-  fmt::print("matched plan pos  {}\nmatched plan head {} deg\n", mplan_pos.text(),
-             mplan_head.text(180 / M_PI));
-  fmt::print("matched grid pos  {}\nmatched grid head {} deg\n", mgrid_pos.text(),
-             mgrid_head.text(180 / M_PI));
-  fmt::print("from truth: plan pos {} head {} deg\n", tplan_pos.text(), tplan_head.text(180/M_PI));
-  fmt::print("from truth: grid pos {} head {} deg\n", tgrid_pos.text(), tgrid_head.text(180/M_PI));
-  fmt::print("pairs     {}: {}\n", r.pairs.size(), pair.text());
-  fmt::print("time      global {:.1f} s, scale {:.1f} s, localize {:.1f} s\n",
-             r.global_localization_seconds, r.scale_search_seconds, r.localize_seconds);
-  for (const auto& n : r.notes)
-    fmt::print("note      {}\n", n);
+  fmt::print("true scale {:.5f}\n", 1.0 / plan_per_world);
+  fmt::print("plan pose         {}; heading {} deg\n", plan_pos.text(), plan_head.text(180 / M_PI));
+  fmt::print("grid pose         {}; heading {} deg\n", grid_pos.text(), grid_head.text(180 / M_PI));
+  fmt::print("matched plan pose {}; heading {} deg\n", mplan_pos.text(), mplan_head.text(180 / M_PI));
+  fmt::print("matched grid pose {}; heading {} deg\n", mgrid_pos.text(), mgrid_head.text(180 / M_PI));
+  fmt::print("pairs     {}: error {}\n", r.pairs.size(), pair.text());
   return 0;
 }

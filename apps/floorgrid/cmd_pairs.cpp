@@ -33,12 +33,12 @@ void add_pairs_command(CLI::App& root) {
     const auto progress = [&](const DualProgress& p) {
       if (!tty)
         return;
-      fmt::print(stderr, "\r{}: {}/{} plan {} grid {} pairs {}    ", p.phase, p.scan, p.scans,
-                 p.plan_converged ? "ok" : "--", p.grid_converged ? "ok" : "--", p.pairs);
+      fmt::print(stderr, "\r{}: {}/{} {} usable {}    ", p.phase, p.scan, p.scans,
+                 p.converged ? "converged" : "--", p.pairs);
     };
     const DualLocalization r =
         localize_dual(d.plan_grid, d.gridmap, *d.log, start, d.manifest.floorplan_scale, {},
-                      progress);
+                      progress, d.plan ? &*d.plan : nullptr);
     if (tty)
       fmt::print(stderr, "\n");
     io::write_pairs_csv(r.pairs, args->out);
@@ -46,9 +46,8 @@ void add_pairs_command(CLI::App& root) {
                r.plan_scale_std, r.converged_fraction);
     for (const auto& [k, v] : r.rejections.by_reason())
       fmt::print("  rejected {} {}\n", k, v);
-    fmt::print("  global {} / {} scans, {:.1f} s; scale {:.1f} s; localize {:.1f} s\n",
-               r.global_scans_plan, r.global_scans_grid, r.global_localization_seconds,
-               r.scale_search_seconds, r.localize_seconds);
+    fmt::print("  global {:.1f} s; scale {:.1f} s; localize {:.1f} s\n",
+               r.global_localization_seconds, r.scale_search_seconds, r.localize_seconds);
     if (d.truth_warp) {
       std::vector<double> e;
       for (Eigen::Index i = 0; i < r.pairs.size(); ++i)

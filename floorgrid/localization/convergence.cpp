@@ -53,6 +53,14 @@ const ConvergenceCheck& ConvergenceMonitor::update(const PoseEstimate& estimate,
                                                    double mean_beam_likelihood, bool has_scale) {
   const ConvergenceCheck previous = last_;
   last_ = check_convergence(estimate, mean_beam_likelihood, has_scale, options_);
+  if (std::isnan(mean_beam_likelihood)) {
+    // The map cannot judge this scan (it ends where the map knows nothing): the fit criterion
+    // keeps its last verdict, so a converged filter stays converged on the other criteria and
+    // an unconverged one cannot converge on it.
+    last_.beam_ok = previous.beam_ok;
+    last_.criteria_met = last_.position_ok && last_.heading_ok && last_.scale_ok &&
+                         last_.ess_ok && last_.beam_ok;
+  }
   last_.consecutive_met = last_.criteria_met ? previous.consecutive_met + 1 : 0;
   last_.consecutive_failed = last_.criteria_met ? 0 : previous.consecutive_failed + 1;
   if (previous.converged)

@@ -76,6 +76,19 @@ void DivergenceMonitor::reset() {
 const DivergenceCheck& DivergenceMonitor::update(double mean_beam_likelihood,
                                                  const PoseEstimate& estimate, bool has_converged) {
   const RecoveryOptions& o = options_;
+  if (std::isnan(mean_beam_likelihood)) {
+    // No information (the scan ends where the map knows nothing): neither a bad scan nor a
+    // good one, and the averages hold; only the spread can still signal.
+    const int bad_scans = last_.bad_scans;
+    const double ratio = last_.fast_slow_ratio;
+    last_ = {};
+    last_.bad_scans = bad_scans;
+    last_.fast_slow_ratio = ratio;
+    if (o.enabled && has_converged && o.max_position_std > 0.0 &&
+        !(estimate.position_std <= o.max_position_std))
+      last_.reason = DivergenceReason::spread;
+    return last_;
+  }
   const double w = std::isfinite(mean_beam_likelihood) ? std::max(0.0, mean_beam_likelihood) : 0.0;
   if (!has_average_) {
     w_slow_ = w_fast_ = w;

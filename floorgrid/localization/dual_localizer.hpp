@@ -1,19 +1,21 @@
 #pragma once
 
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "floorgrid/localization/beam_model.hpp"
+#include "floorgrid/localization/filter_runner.hpp"
 #include "floorgrid/localization/likelihood_field_model.hpp"
 #include "floorgrid/localization/pair_extraction.hpp"
 #include "floorgrid/localization/particle_filter.hpp"
+#include "floorgrid/localization/plan_registration.hpp"
 #include "floorgrid/localization/robot_log.hpp"
-#include "floorgrid/localization/scan_matcher.hpp"
-#include "floorgrid/localization/scan_observation.hpp"
-#include "floorgrid/localization/wall_field.hpp"
 #include "floorgrid/maps/occupancy_grid.hpp"
+#include "floorgrid/maps/vector_floorplan.hpp"
+#include "floorgrid/maps/visible_walls.hpp"
 
 namespace floorgrid {
 
@@ -23,134 +25,189 @@ struct StartPoses {
   Pose2 grid;  ///< grid frame
 };
 
-/// The observation model both filters use.
+/// The observation model a filter uses.
 enum class ObservationModelKind {
   likelihood_field,  ///< distance-transform likelihood field (default)
   beam,              ///< thesis eq. 3.43-3.47 with ray casting
 };
 
-/// The plan filter's defaults: fewer particles (its beam model costs a ray cast per beam), no
-/// augmented-MCL injection while tracking (a plan explains only the walls, so its fit dips
-/// whenever furniture hides them, which is not divergence), and divergence only after ten
-/// scans that explain almost nothing.
+/// The plan filter's defaults: no augmented-MCL injection while tracking (a plan explains only
+/// the walls, so its fit dips whenever furniture hides them, which is not divergence; and in
+/// a corridor injected particles fit as well as the true ones), divergence only after ten
+/// scans that explain almost nothing, and a lower fit to count as converged.
 ParticleFilterOptions default_plan_filter_options();
+/// The gridmap filter's defaults: no augmented-MCL injection while tracking either (along a
+/// corridor it scatters a converged cloud and reads as divergence).
+ParticleFilterOptions default_grid_filter_options();
 
 /// Every setting of the dual localization (defaults in one place).
 struct DualLocalizerOptions {
   ParticleFilterOptions plan_filter = default_plan_filter_options();  ///< on the floorplan
-  ParticleFilterOptions grid_filter;  ///< the filter on the gridmap
-  /// The plan filter's model. The beam model by default: a plan lacks the furniture the laser
-  /// sees, and only the beam model tells a reading stopped short by it (explained) from one
-  /// reaching past a wall (not explained); the likelihood field, blind to that, pulls
-  /// furniture endpoints onto the walls behind them and biases pose and scale.
-  ObservationModelKind plan_model = ObservationModelKind::beam;
-  /// The gridmap filter's model: the gridmap holds the furniture, so the fast likelihood field.
-  ObservationModelKind grid_model = ObservationModelKind::likelihood_field;
+  ParticleFilterOptions grid_filter = default_grid_filter_options();  ///< on the gridmap
+  /// Each filter's observation model. The likelihood field by default for both: it tolerates
+  /// what a plan lacks (furniture endpoints fall to its floor) and costs one lookup per beam;
+  /// the beam model (thesis eq. 3.43-3.47) costs a ray cast per beam.
+  ObservationModelKind plan_model = ObservationModelKind::likelihood_field;
+  ObservationModelKind grid_model = ObservationModelKind::likelihood_field;  ///< the gridmap's
   /// The plan filter's likelihood field: wider than the gridmap's, since a plan is drawn, not
   /// measured (misdrawn walls, doors shown closed).
   LikelihoodFieldOptions plan_likelihood{0.15, 0.8, 0.2, 2.0, 0.5, true};
-  LikelihoodFieldOptions grid_likelihood{0.1, 0.9, 0.1, 2.0, 0.5, true};       ///< the gridmap's
-  /// Beam models: a sharp hit (5 cm: the plan's walls are exact lines), a fifth of the beams
-  /// allowed to stop short on furniture, tempered by half.
+  LikelihoodFieldOptions grid_likelihood{0.1, 0.9, 0.1, 2.0, 0.5, true};  ///< the gridmap's
+  /// Beam models (when chosen): a sharp hit, a fifth of the beams allowed to stop short on
+  /// furniture, tempered by half.
   BeamModelOptions beam{0.7, 0.2, 0.1, 0.0, 0.05, 0.5, 0.0, 0.1, 0.5, false};
-  ObservationOptions plan_observation{30};  ///< beams per scan of the plan filter
+  ObservationOptions plan_observation{60};  ///< beams per scan of the plan filter
   ObservationOptions grid_observation{60};  ///< beams per scan of the gridmap filter
-  PairExtractionOptions pairs;     ///< how endpoints become pairs
-  /// Refine both filters' mean poses by matching the scan onto each map's walls before making
-  /// pairs (a particle cloud's mean is only as sharp as the cloud; the match is sharper), and
-  /// drop the scans whose match fails or cannot pin the pose down (a corridor, an aisle).
+  /// How each filter is fed: update gate, improved proposal, scan matching (the plan's and the
+  /// gridmap's).
+  FilterRunnerOptions plan_runner, grid_runner;
+  WallFieldOptions walls;       ///< the scan matchers' wall lookup
+  /// Localize on the plan's walls as a robot inside sees them: the far faces of walls drawn as
+  /// two lines (the outline's outer line, a wall's hollow) are dropped (visible_walls).
+  bool visible_walls_only = true;
+  VisibleWallsOptions visible;  ///< how the visible walls are found
+  PairExtractionOptions pairs;  ///< how endpoints become pairs
+  /// Pairs only from scans whose scan match succeeded on both maps (the refined poses), and
+  /// never from a scan whose match is degenerate in either (a corridor, an aisle).
   bool refine_poses = true;
-  WallFieldOptions walls;                     ///< the matchers' wall lookup
-  ScanMatchOptions plan_match;                ///< scan matching on the plan
-  ScanMatchOptions grid_match;                ///< scan matching on the gridmap
-  ObservationOptions match_observation{180};  ///< beams per scan of the matching
+
+  // ---- the plan's start and scale ----
+  /// Without a start: the run's laser endpoints, seen from the gridmap filter's poses, are
+  /// gathered into a submap and located on the plan (register_on_plan).
+  SubmapOptions submap;
+  PlanRegistrationOptions registration;  ///< the submap's global search
+  /// The plan's likelihood field for the registration: wide, since a whole run meets every
+  /// misdrawn wall.
+  LikelihoodFieldOptions registration_likelihood{0.25, 0.8, 0.2, 2.0, 1.0, true};
+  /// Scales (world metres per plan metre) searched when the plan's scale is not given.
+  ScaleRange scale_range{0.8, 1.25};
+  /// The plan filter's model during the scale search: the beam model by default. A plan lacks
+  /// the furniture the laser sees; the likelihood field, blind to what lies along a beam,
+  /// explains an endpoint on furniture best by stretching the scan onto the wall behind it and
+  /// biases the scale low, while the beam model explains a short reading by the obstacle.
+  ObservationModelKind scale_search_model = ObservationModelKind::beam;
+  ObservationOptions scale_search_observation{30};  ///< beams per scan of the scale search
+  /// Random walk of the scale during the search, per square root of a metre travelled.
+  double scale_walk = 0.01;
+  int scale_search_scans = 300;  ///< scans of the scale search after the plan filter converged
   /// With an unknown plan scale: refit it, with the refined plan poses of every scan used for
   /// pairs, by a joint Gauss-Newton (fit_scale), and make the pairs with that scale.
   bool refit_scale = true;
-  /// Scales (world metres per plan metre) searched when the plan's scale is not given.
-  ScaleRange scale_range{0.8, 1.25};
-  /// Random walk of the scale during the search, per square root of a metre travelled.
-  double scale_walk = 0.01;
-  int scale_search_scans = 300;  ///< scans of the search after the plan filter converged
-  int max_global_scans = 600;    ///< a filter not converged by then: global localization failed
-  /// Metres and radians of odometry before the filters are updated again: updating a standing
-  /// robot with the same scan over and over makes the filters overconfident.
-  double update_min_translation = 0.05;
-  double update_min_rotation = 0.05;  ///< radians
-  int threads = 2;                    ///< threads of the observation models
-  std::uint64_t seed = 1;             ///< randomness of both filters
+  int max_global_scans = 600;  ///< a gridmap filter not converged by then: global localization failed
+
+  // ---- the dual check: the two filters must agree through the plan's registration ----
+  /// The local registration (LocalRegistration) from the last scans where both filters were
+  /// sure: its window, the pairs it needs, and how many scans it stays valid without news.
+  std::size_t local_window = 50;
+  std::size_t local_min_pairs = 10;
+  std::size_t local_max_age = 150;
+  /// Plan metres and radians: a plan pose farther than this from where the local registration
+  /// puts the gridmap filter's pose disagrees, and its scan makes no pairs. Allows for a plan
+  /// drawn wrong by up to a metre, not for a filter turned the wrong way in a cluttered room.
+  double local_distance = 1.0;
+  double local_heading = 0.12;  ///< radians
+  /// The plan filter is re-initialized when it disagrees by more than this (plan metres and
+  /// radians) for consistency_scans scans: against the local registration when it is fresh...
+  double local_reinitialize_distance = 2.0;
+  double local_reinitialize_heading = 0.3;  ///< radians
+  /// ... and otherwise against the global one (the start poses or the submap's registration,
+  /// one similarity for the whole plan), which also judges the pairs then.
+  double consistency_distance = 3.0;
+  double consistency_heading = 0.5;  ///< radians
+  /// Consecutive disagreeing scans (the gridmap filter converged) after which the plan filter
+  /// is re-initialized around the registered gridmap pose.
+  int consistency_scans = 10;
+  /// Scans a plan filter may stay unconverged (the gridmap filter converged) before it is
+  /// re-initialized there as well.
+  int reconverge_scans = 40;
+  double reinitialize_sigma = 1.0;          ///< plan metres: the new cloud's position spread
+  double reinitialize_heading_sigma = 0.2;  ///< radians: its heading spread
+
+  int threads = 2;         ///< threads of the observation models
+  std::uint64_t seed = 1;  ///< randomness of both filters
 };
 
 /// Per scan: where each filter stood.
 struct ScanRecord {
-  std::size_t scan = 0;                                 ///< index into the log's scans
-  FilterState plan_state = FilterState::uninitialized;  ///< after this scan
-  FilterState grid_state = FilterState::uninitialized;  ///< after this scan
-  bool plan_converged = false;                          ///< plan filter converged
-  bool grid_converged = false;                          ///< grid filter converged
-  Pose2 plan_pose;        ///< the plan filter's mean pose (plan metres)
-  Pose2 grid_pose;        ///< the grid filter's mean pose
+  std::size_t scan = 0;   ///< index into the log's scans
+  FilterRecord plan;      ///< the plan filter (plan metres)
+  FilterRecord grid;      ///< the gridmap filter
   std::size_t pairs = 0;  ///< pairs made from this scan
-  /// The refined poses (when refine_poses): the matches of this scan on each map.
-  ScanMatch plan_match, grid_match;
-  /// Each filter's last convergence test (of the last scan it was updated with).
-  ConvergenceCheck plan_check, grid_check;
-  double plan_fit = 0.0;  ///< the plan filter's mean beam likelihood at its last update
-  double grid_fit = 0.0;  ///< the grid filter's
+  /// The plan filter was re-initialized on this scan by the dual check.
+  bool plan_reinitialized = false;
+  /// The plan pose agrees with the gridmap pose through the registration (only judged while
+  /// the gridmap filter is converged).
+  bool consistent = true;
+};
+
+/// How often a filter diverged, and why (DivergenceReason names, and `inconsistent` for the
+/// plan filter disagreeing with the gridmap filter).
+struct DivergenceCount {
+  std::size_t total = 0;                         ///< divergences
+  std::map<std::string, std::size_t> by_reason;  ///< reason -> count
 };
 
 /// What the dual localization found.
 struct DualLocalization {
   ReferencePairs pairs;           ///< plan metres -> grid metres
   PairRejections rejections;      ///< endpoints that did not become pairs, by reason
-  std::vector<ScanRecord> scans;  ///< one per scan of the localizing pass
+  std::vector<ScanRecord> scans;  ///< one per scan of the log
   /// Share of the scans, from the first scan where both filters were converged on, with both
   /// converged.
   double converged_fraction = 0.0;
   /// Scan index ranges [first, last] where both filters were converged.
   std::vector<std::pair<std::size_t, std::size_t>> converged_periods;
-  double plan_scale = 1.0;                   ///< world metres per plan metre used for the pairs
-  double plan_scale_std = 0.0;               ///< its uncertainty (0 when given)
-  bool plan_scale_estimated = false;         ///< whether it was searched
-  double plan_scale_search = 0.0;            ///< the particle filter's search result
-  double plan_scale_search_std = 0.0;        ///< and its spread
-  std::optional<StartPoses> start;           ///< the start found by global localization (or given)
-  std::size_t global_scans_plan = 0;         ///< scans the plan filter needed to converge globally
-  std::size_t global_scans_grid = 0;         ///< the same for the grid filter
-  std::size_t plan_divergences = 0;          ///< times the plan filter diverged while localizing
-  std::size_t grid_divergences = 0;          ///< the same for the grid filter
+  double plan_scale = 1.0;            ///< world metres per plan metre used for the pairs
+  double plan_scale_std = 0.0;        ///< its uncertainty (0 when given)
+  bool plan_scale_estimated = false;  ///< whether it was searched
+  double plan_scale_search = 0.0;     ///< the particle filter's search result
+  double plan_scale_search_std = 0.0; ///< and its spread
+  StartPoses start;                   ///< where each filter started (found or given)
+  std::size_t grid_start_scan = 0;    ///< the scan the gridmap filter first converged on
+  std::size_t plan_start_scan = 0;    ///< the scan the plan filter started tracking from
+  /// Where the run lies on the plan (the gridmap filter's poses -> plan poses).
+  std::optional<PlanRegistrationResult> registration;
+  DivergenceCount plan_divergences;  ///< the plan filter's, while localizing
+  DivergenceCount grid_divergences;  ///< the gridmap filter's
+  std::size_t plan_corrections = 0;  ///< improved-proposal corrections of the plan filter
+  std::size_t grid_corrections = 0;  ///< the same for the gridmap filter
   double global_localization_seconds = 0.0;  ///< wall clock
-  double scale_search_seconds = 0.0;         ///< wall clock
-  double localize_seconds = 0.0;             ///< wall clock of the localizing pass
-  double pairs_seconds = 0.0;                ///< of which spent extracting pairs
+  double scale_search_seconds = 0.0;         ///< wall clock (search and refit)
+  double localize_seconds = 0.0;             ///< wall clock of the tracking passes
+  double pairs_seconds = 0.0;                ///< of pair extraction
   std::vector<std::string> notes;            ///< what happened, in words
 };
 
 /// Progress of a long run.
 struct DualProgress {
-  std::string phase;            ///< "global localization", "scale search", "localize"
-  std::size_t scan = 0;         ///< scans done in this phase
-  std::size_t scans = 0;        ///< scans in this phase (an upper bound for the first two)
-  bool plan_converged = false;  ///< at the last scan
-  bool grid_converged = false;  ///< at the last scan
-  std::size_t pairs = 0;        ///< pairs so far
+  std::string phase;         ///< "gridmap", "plan: registration", "plan: scale search", "plan"
+  std::size_t scan = 0;      ///< scans done in this phase
+  std::size_t scans = 0;     ///< scans in this phase
+  bool converged = false;    ///< the phase's filter at the last scan
+  std::size_t pairs = 0;     ///< usable scans so far (plan phase)
 };
 
-/// Dual Monte Carlo localization (thesis 4.6): one particle filter on the rasterized floorplan
-/// and one on the gridmap, fed the same odometry and scans; pairs from the laser endpoints of
-/// every scan where both are converged.
+/// Dual Monte Carlo localization (thesis 4.6): one particle filter on the gridmap and one on
+/// the rasterized floorplan, fed the same odometry and scans; pairs from the laser endpoints of
+/// every scan where both are converged (and, by default, where both scans match their map).
 ///
-/// Without a start, each filter localizes globally from its best hypotheses for the first scan
-/// and runs until it converges; the pose it then has is carried back to the first scan by the
-/// odometry and the localizing pass tracks from there. Without a plan scale, the plan filter
-/// also searches the scale: its particles carry scales over `scale_range` with a random walk,
-/// for `scale_search_scans` after converging; the mean and spread of the estimates over the
-/// second half of that window give the scale and its uncertainty, and the localizing pass
-/// uses that scale. InputError when a filter never converges globally.
+/// 1. The gridmap filter localizes globally from its best hypotheses for the first scan (or
+///    tracks from the given start) and runs through the log.
+/// 2. The plan is related to the run: from the given start poses, or, without them, by
+///    locating on the plan the submap of the laser endpoints seen from the gridmap filter's
+///    converged poses (global localization with a whole tour's worth of evidence). Without a
+///    plan scale, the plan filter then searches it: its particles carry scales with a random
+///    walk for scale_search_scans.
+/// 3. The plan filter tracks from where the registration puts the gridmap filter's pose, with
+///    the scale found. The dual check re-initializes it around that pose when the two disagree
+///    or it stays lost while the gridmap filter is converged.
+/// 4. With an unknown scale, the scale is refitted jointly with the refined plan poses.
+/// 5. Pairs: each kept endpoint from the plan pose (ranges divided by the scale) and from the
+///    gridmap pose, where it lies on a wall of both maps.
 ///
 /// `plan_geometry`, when given (a DXF plan's walls, in the plan grid's frame), is what scans
 /// are matched onto in the plan instead of the plan grid's occupied cells: exact walls, not
-/// cells.
+/// cells. InputError when the gridmap filter never converges or the run has no endpoints.
 DualLocalization localize_dual(const OccupancyGrid& plan, const OccupancyGrid& grid,
                                const RobotLog& log, const std::optional<StartPoses>& start,
                                const std::optional<double>& plan_scale,

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <system_error>
@@ -66,6 +67,10 @@ void validate_likelihood_field_options(const LikelihoodFieldOptions& o) {
                  o.max_distance, "a finite number > 0 (metres)");
   require_option(std::isfinite(o.beam_weight) && o.beam_weight > 0.0, "beam_weight", o.beam_weight,
                  "a finite number > 0");
+  require_option(std::isfinite(o.known_margin) && o.known_margin >= 0.0, "known_margin",
+                 o.known_margin, "a finite number >= 0 (metres)");
+  require_option(o.min_known_share >= 0.0 && o.min_known_share <= 1.0, "min_known_share",
+                 o.min_known_share, "in [0, 1]");
 }
 
 LikelihoodFieldModel::LikelihoodFieldModel(const OccupancyGrid& grid,
@@ -85,9 +90,13 @@ LikelihoodFieldModel::LikelihoodFieldModel(const OccupancyGrid& grid,
   const auto floor_log = static_cast<float>(std::log(options_.z_rand));
   log_p_.assign(table_size, floor_log);
   gaussian_.assign(table_size, 0.0f);
+  known_.assign(table_size, 0);
+  const DistanceField observed = observed_distance_field(grid, options_.known_margin + 1.0);
   const double inv_two_sigma2 = 1.0 / (2.0 * options_.sigma_hit * options_.sigma_hit);
   for (int iy = 0; iy < h; ++iy) {
     for (int ix = 0; ix < w; ++ix) {
+      known_[static_cast<std::size_t>(iy + 1) * stride_ + (ix + 1)] =
+          observed.at(ix, iy) <= options_.known_margin ? 1 : 0;
       if (!options_.unknown_is_free && grid.state(ix, iy) == CellState::unknown)
         continue;  // scores as off the map
       const double d = distance_.at(ix, iy);
@@ -196,17 +205,23 @@ void LikelihoodFieldModel::log_likelihood(const ScanObservation& scan, const Par
 double LikelihoodFieldModel::mean_beam_likelihood(const ScanObservation& scan, const Pose2& pose,
                                                   double scale) const {
   const std::size_t beams = scan.size();
-  if (beams == 0)
-    return 0.0;
   const CellTransform t = cell_transform(pose, scale);
   double sum = 0.0;
+  std::size_t known = 0;
   for (std::size_t k = 0; k < beams; ++k) {
     const float ex = scan.end_x[k], ey = scan.end_y[k];
     const float u = std::min(std::max(0.0f, t.x0 + t.c * ex - t.s * ey), max_u_);
     const float v = std::min(std::max(0.0f, t.y0 + t.s * ex + t.c * ey), max_v_);
-    sum += gaussian_[static_cast<std::size_t>(v) * stride_ + static_cast<std::size_t>(u)];
+    const std::size_t i = static_cast<std::size_t>(v) * stride_ + static_cast<std::size_t>(u);
+    if (!known_[i])
+      continue;
+    sum += gaussian_[i];
+    ++known;
   }
-  return sum / static_cast<double>(beams);
+  if (known == 0 ||
+      static_cast<double>(known) < options_.min_known_share * static_cast<double>(beams))
+    return std::numeric_limits<double>::quiet_NaN();
+  return sum / static_cast<double>(known);
 }
 
 }  // namespace floorgrid

@@ -35,6 +35,13 @@ struct LikelihoodFieldOptions {
   /// True by default: a SLAM gridmap draws walls as thin occupied lines with unknown space just
   /// behind, where noisy endpoints of beams that hit the wall land.
   bool unknown_is_free = true;
+  /// Metres (map): an endpoint off the map, or farther than this from every observed (free or
+  /// occupied) cell, says nothing about the fit (the map was cropped there, or never saw it):
+  /// mean_beam_likelihood leaves it out. >= 0.
+  double known_margin = 0.5;
+  /// mean_beam_likelihood is NaN, "no information", when fewer than this share of a scan's
+  /// endpoints are known, in [0, 1]: a robot driving off the map's edge is not lost.
+  double min_known_share = 0.25;
 };
 
 /// Checks `options`; throws InputError naming the field (`likelihood_field.sigma_hit`, ...)
@@ -67,9 +74,10 @@ class LikelihoodFieldModel : public ObservationModel {
   void log_likelihood(const ScanObservation& scan, const ParticleSet& particles,
                       std::vector<double>& out, int threads = 2) const override;
 
-  /// Mean over the scan's beams of exp(-d^2 / (2 sigma_hit^2)) at `pose` (the Gaussian part
-  /// without weight or floor), in [0, 1]; 0 for an empty scan. Endpoints off the map (and in
-  /// unknown cells unless unknown_is_free) count 0.
+  /// Mean over the scan's known endpoints (see known_margin) of exp(-d^2 / (2 sigma_hit^2)) at
+  /// `pose` (the Gaussian part without weight or floor), in [0, 1]; NaN when fewer than
+  /// min_known_share of the endpoints are known (an empty scan included). Known endpoints in
+  /// unknown cells count 0 unless unknown_is_free.
   double mean_beam_likelihood(const ScanObservation& scan, const Pose2& pose,
                               double scale = 1.0) const override;
 
@@ -105,6 +113,7 @@ class LikelihoodFieldModel : public ObservationModel {
   float max_v_ = 0.0f;           // height + 1: the top border row
   std::vector<float> log_p_;     // (width + 2) x (height + 2), border = log(z_rand)
   std::vector<float> gaussian_;  // same layout: exp(-d^2 / 2 sigma^2), border 0
+  std::vector<std::uint8_t> known_;  // same layout: 1 within known_margin of an observed cell
 };
 
 }  // namespace floorgrid

@@ -1,5 +1,7 @@
 #include "floorgrid/localization/motion_model.hpp"
 
+#include <algorithm>
+
 #include <cmath>
 #include <numbers>
 
@@ -31,7 +33,14 @@ Pose2 apply_motion(const Pose2& pose, const OdometryMotion& m) {
 }
 
 OdometryMotion sample_noisy_motion(const OdometryMotion& m, const MotionNoise& n, Random& random) {
-  const double r1 = m.rot1 * m.rot1, r2 = m.rot2 * m.rot2, t = m.trans * m.trans;
+  // Over one odometry period a differential-drive robot turns about half the net turn before
+  // and after driving; rotations much larger than the net turn, of opposite signs, only come
+  // from a sideways jump (a SLAM correction in a corrected log, wheel slip), where they are
+  // artefacts of the decomposition. Their noise is capped at the net turn, or a 2 cm sideways
+  // jump would scatter the headings by half a radian.
+  const double net = std::abs(m.rot1 + m.rot2);
+  const double a1 = std::min(std::abs(m.rot1), net), a2 = std::min(std::abs(m.rot2), net);
+  const double r1 = a1 * a1, r2 = a2 * a2, t = m.trans * m.trans;
   OdometryMotion noisy;
   noisy.rot1 = m.rot1 + random.normal(std::sqrt(n.alpha1 * r1 + n.alpha2 * t));
   noisy.trans = m.trans + random.normal(std::sqrt(n.alpha3 * t + n.alpha4 * (r1 + r2)));

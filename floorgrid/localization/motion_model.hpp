@@ -15,7 +15,8 @@ struct OdometryMotion {
 
 /// The noise of the odometry motion model: the standard deviation of each part grows with
 /// the motion (variances alpha1 rot1^2 + alpha2 trans^2 for the rotations, alpha3 trans^2 +
-/// alpha4 (rot1^2 + rot2^2) for the translation).
+/// alpha4 (rot1^2 + rot2^2) for the translation), where each rotation's size is capped at the
+/// net turn |rot1 + rot2| (see sample_noisy_motion).
 struct MotionNoise {
   double alpha1 = 0.05;  ///< rotation noise from rotation (rad^2/rad^2)
   double alpha2 = 0.01;  ///< rotation noise from translation (rad^2/m^2)
@@ -34,7 +35,9 @@ OdometryMotion odometry_motion(const Pose2& from, const Pose2& to);
 /// `pose` moved by `motion` (rot1 in its frame, then trans along the new heading, then rot2).
 Pose2 apply_motion(const Pose2& pose, const OdometryMotion& motion);
 
-/// `motion` with sampled noise added to each part, per MotionNoise.
+/// `motion` with sampled noise added to each part, per MotionNoise. Rotations larger than the
+/// net turn (a sideways jump: rot1 and rot2 near +-pi/2 with opposite signs) add noise only as
+/// large as the net turn.
 OdometryMotion sample_noisy_motion(const OdometryMotion& motion, const MotionNoise& noise,
                                    Random& random);
 

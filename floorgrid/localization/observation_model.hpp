@@ -19,7 +19,8 @@ class ObservationModel {
 
   /// The mean over the scan's beams of each beam's likelihood at one pose, in [0, 1]: the
   /// share of the scan the map explains there (1: every endpoint exactly on a wall). Used by
-  /// the convergence test; `scale` as in ScanObservation.
+  /// the convergence and divergence tests; `scale` as in ScanObservation. NaN when the map
+  /// cannot tell (too few beams end where the map knows anything): the tests then hold.
   virtual double mean_beam_likelihood(const ScanObservation& scan, const Pose2& pose,
                                       double scale = 1.0) const = 0;
 };

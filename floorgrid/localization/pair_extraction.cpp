@@ -15,6 +15,7 @@ PairRejections& PairRejections::operator+=(const PairRejections& o) {
   too_far += o.too_far;
   degenerate += o.degenerate;
   unmatched += o.unmatched;
+  inconsistent += o.inconsistent;
   return *this;
 }
 
@@ -23,12 +24,12 @@ std::map<std::string, std::size_t> PairRejections::by_reason() const {
           {"off_plan_wall", off_plan_wall}, {"off_grid_wall", off_grid_wall},
           {"subsampled", subsampled},       {"per_scan_cap", per_scan_cap},
           {"too_far", too_far},             {"degenerate", degenerate},
-          {"unmatched", unmatched}};
+          {"unmatched", unmatched},         {"inconsistent", inconsistent}};
 }
 
 std::size_t PairRejections::total() const {
   return not_converged + no_return + off_plan_wall + off_grid_wall + subsampled + per_scan_cap +
-         too_far + degenerate + unmatched;
+         too_far + degenerate + unmatched + inconsistent;
 }
 
 void reject_scan(const LaserScan& scan, PairRejections& rejections) {

@@ -37,6 +37,9 @@ struct PairRejections {
   /// Beams of scans a scan match rejected in one of the maps (too few endpoints on walls, or
   /// the filter's pose needed a correction beyond the match's limits).
   std::size_t unmatched = 0;
+  /// Beams of scans where the plan pose disagreed with the gridmap pose through the plan's
+  /// registration (one of the filters is wrong).
+  std::size_t inconsistent = 0;
 
   /// Adds another count.
   PairRejections& operator+=(const PairRejections& other);

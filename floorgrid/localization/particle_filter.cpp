@@ -223,6 +223,18 @@ void ParticleFilter::predict(const OdometryMotion& motion_in_world) {
   }
 }
 
+void ParticleFilter::shift(const Pose2& from, const Pose2& to) {
+  const Pose2 delta = to.compose(from.inverse());
+  for (std::size_t i = 0; i < particles_.size(); ++i) {
+    const Pose2 moved = delta.compose(particles_.pose(i));
+    particles_.x[i] = moved.x;
+    particles_.y[i] = moved.y;
+    particles_.theta[i] = moved.theta;
+  }
+  if (anchor_)
+    anchor_ = delta.compose(*anchor_);
+}
+
 bool ParticleFilter::update(const ScanObservation& scan, const ObservationModel& model,
                             int threads) {
   model.log_likelihood(scan, particles_, log_likelihood_, threads);
@@ -314,7 +326,7 @@ FilterStatus ParticleFilter::step(const OdometryMotion& motion_in_world,
       update_anchor(status.estimate);
     // The anchor stays the last good estimate; any later estimate that fits better than the
     // lost one re-centres it.
-    anchor_fit_ = status.mean_beam_likelihood;
+    anchor_fit_ = std::isnan(status.mean_beam_likelihood) ? 0.0 : status.mean_beam_likelihood;
     anchor_age_ = 0;
     plan_recovery();
   };

@@ -143,6 +143,11 @@ class ParticleFilter {
   /// The motion step alone (predict_particles with the filter's noise, scale walk and random
   /// source); also carries the anchor along.
   void predict(const OdometryMotion& motion_in_world);
+  /// Moves the whole cloud rigidly so that `from` lands on `to` (each particle p becomes
+  /// to * from^-1 * p; the anchor moves along): the correction of an improved proposal, which
+  /// centres the predicted particles where a scan match puts the robot before they are weighted
+  /// (Grisetti, Stachniss, Burgard 2007). Keeps the cloud's spread and weights.
+  void shift(const Pose2& from, const Pose2& to);
   /// The measurement step alone (update_weights with `model`'s log-likelihoods); returns
   /// update_weights' result. step() is predict, update, then the assessment and resampling.
   bool update(const ScanObservation& scan, const ObservationModel& model, int threads = 2);

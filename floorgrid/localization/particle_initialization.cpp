@@ -280,6 +280,9 @@ HypothesisSeeding seed_best_hypotheses(const FreeSpaceSampler& free_space,
   }
   result.scored = total;
   result.position_step = step;
+  result.log_likelihood.reserve(best.size());
+  for (const ScoredHypothesis& h : best)
+    result.log_likelihood.push_back(h.score);
   result.best_log_likelihood = best.front().score;
   result.worst_kept_log_likelihood = best.back().score;
   return result;

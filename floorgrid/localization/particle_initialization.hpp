@@ -124,6 +124,8 @@ struct HypothesisSeeding {
   double position_step = 0.0;              ///< metres: the lattice step used (after any coarsening)
   double best_log_likelihood = 0.0;        ///< of the best hypothesis
   double worst_kept_log_likelihood = 0.0;  ///< of the K-th best
+  /// Each kept hypothesis's score (particle i's, best first), before the jitter.
+  std::vector<double> log_likelihood;
 };
 
 /// Global localization by exhaustive scoring of the FIRST scan: every pose of a lattice over the

@@ -4,6 +4,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 #include "floorgrid/core/error.hpp"
 
@@ -57,13 +58,13 @@ struct Linearization {
   double inlier_square_sum = 0.0;
   Eigen::Matrix2d normals = Eigen::Matrix2d::Zero();  // sum over inliers of n n^T (or I / 2)
 
-  /// The weakest translation direction's share of the inliers' normals.
-  double constraint() const {
+  /// The weakest translation direction's share of the inliers' normals, and the direction.
+  std::pair<double, Eigen::Vector2d> constraint() const {
     if (inliers == 0)
-      return 0.0;
+      return {0.0, Eigen::Vector2d::UnitX()};
     const Eigen::Matrix2d m = normals / static_cast<double>(inliers);
-    return Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(m, Eigen::EigenvaluesOnly)
-        .eigenvalues()(0);
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(m);
+    return {eigen.eigenvalues()(0), eigen.eigenvectors().col(0)};
   }
 };
 
@@ -163,7 +164,7 @@ ScanMatch match_scan(const WallField& walls, const ScanObservation& scan, const 
   const Linearization l = linearize(walls, scan, m.pose, u, o.min_correspondence, o);
   m.inliers = l.inliers;
   m.rms = l.inliers ? std::sqrt(l.inlier_square_sum / static_cast<double>(l.inliers)) : 0.0;
-  m.constraint = l.constraint();
+  std::tie(m.constraint, m.weak_direction) = l.constraint();
   const double fraction =
       m.endpoints ? static_cast<double>(m.inliers) / static_cast<double>(m.endpoints) : 0.0;
   if (m.inliers < o.min_inliers || fraction < o.min_inlier_fraction) {

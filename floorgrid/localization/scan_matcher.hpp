@@ -58,6 +58,8 @@ struct ScanMatch {
   std::size_t inliers = 0;    ///< endpoints within inlier_distance of a wall at `pose`
   double rms = 0.0;           ///< map metres: root mean square residual of the inliers
   double constraint = 0.0;    ///< the weakest translation direction's share (min_constraint)
+  /// Unit vector (map frame) of the weakest translation direction: along a corridor.
+  Eigen::Vector2d weak_direction = Eigen::Vector2d::UnitX();
   int iterations = 0;         ///< Gauss-Newton iterations run
   /// Whether the match was accepted.
   bool ok() const { return failure == ScanMatchFailure::none; }

@@ -52,6 +52,15 @@ Eigen::Vector2f wall_normal(const OccupancyGrid& grid, int ix, int iy, const Wal
   return normal.normalized().cast<float>();
 }
 
+/// Whether cell (ix, iy) or one of its eight neighbours is occupied.
+bool near_occupied(const OccupancyGrid& grid, int ix, int iy) {
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx)
+      if (grid.is_occupied(ix + dx, iy + dy))
+        return true;
+  return false;
+}
+
 }  // namespace
 
 WallField::WallField(const OccupancyGrid& grid, const WallFieldOptions& options)
@@ -73,7 +82,7 @@ WallField::WallField(const OccupancyGrid& grid, const WallFieldOptions& options)
 }
 
 WallField::WallField(const VectorFloorplan& plan, const GridGeometry& geometry,
-                     const WallFieldOptions& options)
+                     const WallFieldOptions& options, const OccupancyGrid* visible)
     : geometry_(geometry) {
   validate(options);
   std::vector<std::int32_t> wall_of_cell(geometry_.size(), -1);
@@ -90,6 +99,8 @@ WallField::WallField(const VectorFloorplan& plan, const GridGeometry& geometry,
       const Eigen::Vector2d p = samples ? a + ab * (static_cast<double>(k) / samples) : a;
       int ix = 0, iy = 0;
       if (!geometry_.cell_of(p, ix, iy))
+        continue;
+      if (visible && !near_occupied(*visible, ix, iy))
         continue;
       // The segment's point nearest the cell centre, and how near it is.
       const Eigen::Vector2d c = geometry_.cell_center(ix, iy);

@@ -47,8 +47,10 @@ class WallField {
   /// passes through holds the wall's point nearest the cell centre and the wall's own normal
   /// (arcs as chords of at most a tenth of a cell's deviation), so a match is not limited by
   /// the cells' size. Throws InputError on bad options.
+  /// With `visible` (a grid of the same geometry), only the walls passing through or next to
+  /// one of its occupied cells count (see visible_walls).
   WallField(const VectorFloorplan& plan, const GridGeometry& geometry,
-            const WallFieldOptions& options = {});
+            const WallFieldOptions& options = {}, const OccupancyGrid* visible = nullptr);
 
   /// The nearest wall point to `point_in_map` (the one nearest the centre of the cell holding
   /// it), or null when the point is off the grid or farther than max_distance from every wall.

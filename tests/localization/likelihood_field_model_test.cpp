@@ -183,10 +183,27 @@ TEST(LikelihoodField, LogLikelihoodIsTheSumOfHandComputedBeamTerms) {
   strict.log_likelihood(scan, particle, out, 1);
   EXPECT_NEAR(out[0], 0.5 * (by_hand - log_p(0.2) + std::log(z_rand)), 1e-5);
 
-  // The mean beam likelihood: the Gaussian parts alone, averaged.
+  // The mean beam likelihood: the Gaussian parts alone, averaged over the known endpoints
+  // (the one off the map says nothing; the unknown cell 0.2 m from the wall is known).
   const auto g = [&](double d) { return std::exp(-d * d / (2 * sigma * sigma)); };
   EXPECT_NEAR(model.mean_beam_likelihood(scan, particle.pose(0)),
-              (1.0 + g(0.1) + g(0.3) + 0.0 + 0.0 + g(0.2)) / 6.0, 1e-6);
+              (1.0 + g(0.1) + g(0.3) + 0.0 + g(0.2)) / 5.0, 1e-6);
+
+  // Endpoints deep in unknown space (more than known_margin from every observed cell) are not
+  // known either; with fewer than min_known_share known, the map cannot tell: NaN.
+  ScanObservation far;
+  const auto add_far = [&](double map_x, double map_y) {
+    far.angle.push_back(0.0f);
+    far.range.push_back(1.0f);
+    far.end_x.push_back(static_cast<float>(map_y - 2.0));
+    far.end_y.push_back(static_cast<float>(1.0 - map_x));
+  };
+  add_far(2.525, 2.0125);  // on the wall: known
+  for (int i = 0; i < 4; ++i)
+    add_far(3.3 + 0.2 * i, 2.0);  // 0.75 m or more beyond the wall: unknown
+  EXPECT_TRUE(std::isnan(model.mean_beam_likelihood(far, particle.pose(0))));  // 1 of 5 known
+  add_far(2.525, 2.5125);
+  EXPECT_NEAR(model.mean_beam_likelihood(far, particle.pose(0)), 1.0, 1e-6);  // 2 of 6
 }
 
 TEST(LikelihoodField, TruePoseScoresHigherThanShiftedOrTurnedPoses) {
@@ -258,8 +275,12 @@ TEST(LikelihoodField, YawedGridGivesTheResultOfTheUnyawedMap) {
   yawed.log_likelihood(scan, in_yawed, b);
   for (std::size_t i = 0; i < a.size(); ++i) {
     EXPECT_NEAR(a[i], b[i], 1e-3) << i;
-    EXPECT_NEAR(flat.mean_beam_likelihood(scan, in_flat.pose(i)),
-                yawed.mean_beam_likelihood(scan, in_yawed.pose(i)), 1e-3);
+    const double f = flat.mean_beam_likelihood(scan, in_flat.pose(i));
+    const double y = yawed.mean_beam_likelihood(scan, in_yawed.pose(i));
+    EXPECT_EQ(std::isnan(f), std::isnan(y)) << i;
+    if (!std::isnan(f)) {
+      EXPECT_NEAR(f, y, 1e-3) << i;
+    }
   }
   EXPECT_NEAR(yawed.distance_to_occupied(origin.transform({1.025, 4.0})), 0.0, 1e-9);
   EXPECT_NEAR(yawed.distance_to_occupied(origin.transform({1.325, 4.0})), 0.3, 1e-6);
@@ -298,7 +319,7 @@ TEST(LikelihoodField, EmptyInputs) {
   EXPECT_EQ(out, std::vector<double>({0.0, 0.0}));
   model.log_likelihood(room_scan(kTruePoses[0]), ParticleSet{}, out);
   EXPECT_TRUE(out.empty());
-  EXPECT_EQ(model.mean_beam_likelihood(ScanObservation{}, {3, 3, 0}), 0.0);
+  EXPECT_TRUE(std::isnan(model.mean_beam_likelihood(ScanObservation{}, {3, 3, 0})));
 }
 
 TEST(LikelihoodField, RejectsBadOptionsNamingTheField) {
@@ -316,6 +337,8 @@ TEST(LikelihoodField, RejectsBadOptionsNamingTheField) {
   EXPECT_EQ(field_of({.z_rand = 0.0}), "likelihood_field.z_rand");
   EXPECT_EQ(field_of({.max_distance = std::nan("")}), "likelihood_field.max_distance");
   EXPECT_EQ(field_of({.beam_weight = 0.0}), "likelihood_field.beam_weight");
+  EXPECT_EQ(field_of({.known_margin = -1.0}), "likelihood_field.known_margin");
+  EXPECT_EQ(field_of({.min_known_share = 1.5}), "likelihood_field.min_known_share");
   EXPECT_EQ(field_of({}), "");
   EXPECT_THROW(LikelihoodFieldModel(OccupancyGrid{}), InputError);
 }

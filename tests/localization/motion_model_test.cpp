@@ -40,7 +40,7 @@ TEST(MotionModel, KnownDecomposition) {
 
 TEST(MotionModel, NoiseVariancesFollowTheAlphas) {
   const MotionNoise noise{0.05, 0.01, 0.02, 0.05};
-  const OdometryMotion m{0.3, 1.0, -0.2};
+  const OdometryMotion m{0.3, 1.0, 0.2};  // an arc: both turns the same way
   Random random(11);
   const int n = 100000;
   double s1 = 0, st = 0, s2 = 0, m1 = 0;
@@ -55,6 +55,24 @@ TEST(MotionModel, NoiseVariancesFollowTheAlphas) {
   EXPECT_NEAR(s1 / n, 0.05 * 0.09 + 0.01 * 1.0, 0.02 * (0.05 * 0.09 + 0.01));
   EXPECT_NEAR(st / n, 0.02 * 1.0 + 0.05 * (0.09 + 0.04), 0.02 * (0.02 + 0.05 * 0.13));
   EXPECT_NEAR(s2 / n, 0.05 * 0.04 + 0.01 * 1.0, 0.02 * (0.05 * 0.04 + 0.01));
+}
+
+TEST(MotionModel, SidewaysJumpAddsNoRotationNoiseBeyondTheNetTurn) {
+  // 5 cm sideways with no net turn: rot1 = pi/2, rot2 = -pi/2 are artefacts of the
+  // decomposition; only the translation's share of the noise remains.
+  const MotionNoise noise{0.05, 0.01, 0.02, 0.05};
+  const OdometryMotion m = odometry_motion({0, 0, 0}, {0, 0.05, 0});
+  ASSERT_NEAR(std::abs(m.rot1), std::numbers::pi / 2, 1e-12);
+  Random random(3);
+  const int n = 100000;
+  double s1 = 0, st = 0;
+  for (int i = 0; i < n; ++i) {
+    const OdometryMotion x = sample_noisy_motion(m, noise, random);
+    s1 += (x.rot1 - m.rot1) * (x.rot1 - m.rot1);
+    st += (x.trans - m.trans) * (x.trans - m.trans);
+  }
+  EXPECT_NEAR(s1 / n, 0.01 * 0.0025, 0.03 * 0.01 * 0.0025);
+  EXPECT_NEAR(st / n, 0.02 * 0.0025, 0.03 * 0.02 * 0.0025);
 }
 
 }  // namespace

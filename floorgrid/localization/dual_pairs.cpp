@@ -1,0 +1,104 @@
+#include "floorgrid/localization/dual_pairs.hpp"
+
+#include <optional>
+
+namespace floorgrid {
+
+bool usable_for_pairs(const ScanRecord& r, bool refine) {
+  if (!(r.plan.converged && r.grid.converged) || !r.consistent)
+    return false;
+  return !refine || (r.plan.match.ok() && r.grid.match.ok());
+}
+
+double refit_plan_scale(DualLocalization& result, const RobotLog& log, const WallField& plan_walls,
+                        const FilterRunnerOptions& plan_runner, double scale) {
+  std::vector<ScanObservation> points;
+  std::vector<Pose2> poses;
+  std::vector<std::size_t> which;
+  for (const ScanRecord& r : result.scans) {
+    if (!usable_for_pairs(r, true))
+      continue;
+    points.push_back(make_observation(log.scans[r.scan], plan_runner.match_observation));
+    poses.push_back(r.plan.match.pose);
+    which.push_back(r.scan);
+  }
+  if (points.size() < 10) {
+    result.notes.push_back("too few matched scans to refit the plan scale: kept the search's");
+    return scale;
+  }
+  std::vector<const ScanObservation*> views;
+  views.reserve(points.size());
+  for (const ScanObservation& p : points)
+    views.push_back(&p);
+  const ScaleFit fit = fit_scale(plan_walls, views, poses, scale, plan_runner.match);
+  result.plan_scale_std = fit.scale_std;
+  for (std::size_t k = 0; k < which.size(); ++k)
+    result.scans[which[k]].plan.match.pose = fit.poses[k];
+  result.notes.push_back("plan scale refitted on " + std::to_string(fit.scans) +
+                         " scans by joint scan matching");
+  return fit.scale;
+}
+
+void make_pairs(DualLocalization& result, const RobotLog& log, const WallField& plan_walls,
+                const WallField& grid_walls, const PairExtractionOptions& options, bool refine) {
+  PairCollector pairs;
+  for (ScanRecord& record : result.scans) {
+    const LaserScan& scan = log.scans[record.scan];
+    if (!(record.plan.converged && record.grid.converged)) {
+      reject_scan(scan, result.rejections);
+      continue;
+    }
+    if (!record.consistent) {
+      result.rejections.inconsistent += scan.ranges.size();
+      continue;
+    }
+    Pose2 plan_pose = record.plan.pose, grid_pose = record.grid.pose;
+    if (refine) {
+      const ScanMatchFailure failure =
+          record.plan.match.ok() ? record.grid.match.failure : record.plan.match.failure;
+      if (failure == ScanMatchFailure::degenerate) {
+        result.rejections.degenerate += scan.ranges.size();
+        continue;
+      }
+      if (failure != ScanMatchFailure::none) {
+        result.rejections.unmatched += scan.ranges.size();
+        continue;
+      }
+      plan_pose = record.plan.match.pose;
+      grid_pose = record.grid.match.pose;
+    }
+    const std::size_t before = pairs.size();
+    extract_scan_pairs(scan, plan_pose, result.plan_scale, grid_pose, plan_walls, grid_walls,
+                       options, pairs, result.rejections);
+    record.pairs = pairs.size() - before;
+  }
+  result.pairs = pairs.pairs();
+}
+
+void summarize_convergence(DualLocalization& result) {
+  std::optional<std::size_t> first;
+  std::size_t both = 0;
+  result.converged_periods.clear();
+  for (const ScanRecord& r : result.scans) {
+    const bool ok = r.plan.converged && r.grid.converged;
+    if (ok && !first)
+      first = r.scan;
+    if (!ok)
+      continue;
+    ++both;
+    if (!result.converged_periods.empty() &&
+        result.converged_periods.back().second + 1 == r.scan) {
+      result.converged_periods.back().second = r.scan;
+    } else {
+      result.converged_periods.emplace_back(r.scan, r.scan);
+    }
+  }
+  if (first) {
+    result.converged_fraction =
+        static_cast<double>(both) / static_cast<double>(result.scans.size() - *first);
+  } else {
+    result.notes.push_back("the two filters were never converged at the same time: no pairs");
+  }
+}
+
+}  // namespace floorgrid

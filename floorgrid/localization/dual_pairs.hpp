@@ -1,0 +1,25 @@
+#pragma once
+
+#include "floorgrid/localization/dual_localizer.hpp"
+
+namespace floorgrid {
+
+/// Whether a scan gives pairs: both filters converged and consistent with each other and,
+/// when poses are refined, both scan matches accepted.
+bool usable_for_pairs(const ScanRecord& record, bool refine);
+
+/// Refits the plan's scale jointly with the refined plan poses of every usable scan
+/// (fit_scale) and stores the refitted poses in the records; returns the scale (or `scale`
+/// when fewer than ten scans are usable) and sets result.plan_scale_std.
+double refit_plan_scale(DualLocalization& result, const RobotLog& log, const WallField& plan_walls,
+                        const FilterRunnerOptions& plan_runner, double scale);
+
+/// The pairs of every scan (result.pairs, result.rejections, ScanRecord::pairs) at the plan
+/// scale result.plan_scale: from the refined poses when `refine`, else the filters' means.
+void make_pairs(DualLocalization& result, const RobotLog& log, const WallField& plan_walls,
+                const WallField& grid_walls, const PairExtractionOptions& options, bool refine);
+
+/// result.converged_fraction and result.converged_periods from the records.
+void summarize_convergence(DualLocalization& result);
+
+}  // namespace floorgrid

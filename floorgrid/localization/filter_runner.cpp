@@ -1,0 +1,90 @@
+#include "floorgrid/localization/filter_runner.hpp"
+
+#include <cmath>
+#include <utility>
+
+#include "floorgrid/localization/motion_model.hpp"
+
+namespace floorgrid {
+
+bool apply_proposal(ParticleFilter& filter, const WallField& walls, const ScanObservation& points,
+                    const ScanMatchOptions& options) {
+  const PoseEstimate predicted = estimate_pose(filter.particles());
+  const ScanMatch m = match_scan(walls, points, predicted.pose, predicted.scale, options);
+  if (!m.ok() && m.failure != ScanMatchFailure::degenerate)
+    return false;
+  Pose2 to = m.pose;
+  if (!m.ok()) {
+    // Along a corridor the match only drifted: the cloud keeps its own position there.
+    Eigen::Vector2d step = m.pose.translation() - predicted.pose.translation();
+    step -= step.dot(m.weak_direction) * m.weak_direction;
+    to.x = predicted.pose.x + step.x();
+    to.y = predicted.pose.y + step.y();
+  }
+  filter.shift(predicted.pose, to);
+  return true;
+}
+
+FilterRunner::FilterRunner(ParticleFilter filter, const ObservationModel& model,
+                           const WallField& walls, const RobotLog& log,
+                           const std::vector<ScanObservation>& observations,
+                           const FilterRunnerOptions& options)
+    : filter_(std::move(filter)),
+      model_(model),
+      walls_(walls),
+      log_(log),
+      observations_(observations),
+      options_(options) {
+  validate(options_.match);
+}
+
+FilterRecord FilterRunner::step(std::size_t i) {
+  OdometryMotion motion;
+  bool update = true;
+  if (last_) {
+    motion = odometry_motion(log_.scans[*last_].robot_pose, log_.scans[i].robot_pose);
+    moved_ += std::abs(motion.trans);
+    turned_ += std::abs(motion.rot1) + std::abs(motion.rot2);
+    update = moved_ >= options_.update_min_translation || turned_ >= options_.update_min_rotation;
+  }
+  last_ = i;
+  FilterRecord record;
+  if (!filter_.initialized())
+    return record;
+  if (update) {
+    moved_ = turned_ = 0.0;
+    std::optional<ScanObservation> points;
+    const bool tracking = filter_.converged() && filter_.state() == FilterState::tracking;
+    FilterStatus status;
+    if (options_.improved_proposal && tracking) {
+      filter_.predict(motion);
+      points = make_observation(log_.scans[i], options_.match_observation);
+      corrections_ += apply_proposal(filter_, walls_, *points, options_.match);
+      status = filter_.step(OdometryMotion{}, observations_[i], model_, options_.threads);
+    } else {
+      status = filter_.step(motion, observations_[i], model_, options_.threads);
+    }
+    record.updated = true;
+    record.diverged = status.state == FilterState::diverged;
+  } else {
+    filter_.predict(motion);
+  }
+  const FilterStatus& status = filter_.status();
+  record.state = filter_.state();
+  record.converged = filter_.converged();
+  record.estimate = status.estimate;
+  record.check = status.convergence;
+  record.fit = status.mean_beam_likelihood;
+  const PoseEstimate now = estimate_pose(filter_.particles());
+  record.pose = now.pose;
+  if (options_.refine && record.converged) {
+    const ScanObservation points = make_observation(log_.scans[i], options_.match_observation);
+    record.match = match_scan(walls_, points, now.pose, now.scale, options_.match);
+    record.matched = true;
+  } else {
+    record.match.failure = ScanMatchFailure::too_few_inliers;
+  }
+  return record;
+}
+
+}  // namespace floorgrid

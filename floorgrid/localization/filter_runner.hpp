@@ -1,0 +1,90 @@
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "floorgrid/localization/particle_filter.hpp"
+#include "floorgrid/localization/robot_log.hpp"
+#include "floorgrid/localization/scan_matcher.hpp"
+#include "floorgrid/localization/scan_observation.hpp"
+#include "floorgrid/localization/wall_field.hpp"
+
+namespace floorgrid {
+
+/// How a FilterRunner feeds one particle filter with a log.
+struct FilterRunnerOptions {
+  /// Metres and radians of odometry before the filter is updated again: updating a standing
+  /// robot with the same scan over and over makes a filter overconfident.
+  double update_min_translation = 0.05;
+  double update_min_rotation = 0.05;  ///< radians
+  /// Improved proposal while tracking (Grisetti, Stachniss, Burgard 2007): a converged filter
+  /// moves its predicted cloud onto the pose a scan match finds from the cloud's mean (along a
+  /// corridor only across it) before weighing it, so it follows the walls, not the drift.
+  bool improved_proposal = true;
+  /// Match each scan of a converged filter onto the walls from its mean pose (the refined pose
+  /// pairs are made from).
+  bool refine = true;
+  ScanMatchOptions match;                     ///< both uses of scan matching
+  ObservationOptions match_observation{180};  ///< beams per scan of the matching
+  int threads = 2;                            ///< threads of the observation model
+};
+
+/// What one filter did on one scan.
+struct FilterRecord {
+  FilterState state = FilterState::uninitialized;  ///< after this scan
+  bool converged = false;  ///< converged after this scan (FilterStatus::converged)
+  bool updated = false;    ///< took a measurement update on this scan (else only the motion)
+  Pose2 pose;              ///< mean pose of the particles after this scan (map frame)
+  PoseEstimate estimate;   ///< at the last update
+  ConvergenceCheck check;  ///< the last update's convergence test
+  /// The model's mean beam likelihood at the last update; NaN when the map could not tell.
+  double fit = 0.0;
+  bool diverged = false;  ///< the filter declared itself lost on this scan
+  /// The scan matched from `pose` onto the walls (only when converged and refining; its
+  /// failure is `too_few_inliers` with no inliers otherwise).
+  ScanMatch match;
+  bool matched = false;  ///< whether `match` was computed
+};
+
+/// Feeds one particle filter the scans of a log in order, one scan per step: the odometry
+/// motion since the previous step, a measurement update when the robot has moved enough
+/// (with the improved proposal while converged), and, while converged, the scan matched from
+/// the mean pose. The filter is the runner's own; callers initialize and re-initialize it.
+class FilterRunner {
+ public:
+  /// A runner over `log` with `model` on the map whose walls are `walls`; `observations[i]` is
+  /// scan i prepared for `model`. Everything given must outlive the runner.
+  FilterRunner(ParticleFilter filter, const ObservationModel& model, const WallField& walls,
+               const RobotLog& log, const std::vector<ScanObservation>& observations,
+               const FilterRunnerOptions& options);
+
+  /// Advances to scan `i` (the motion from the last scan stepped, or none for the first) and
+  /// records what the filter did. Scans must come in increasing order.
+  FilterRecord step(std::size_t i);
+  /// Takes scan `i` as already used (a filter seeded from its hypotheses): the next step
+  /// carries the motion from it.
+  void start_at(std::size_t i) { last_ = i; }
+  /// The filter, to initialize or re-initialize (a fresh filter may be assigned).
+  ParticleFilter& filter() { return filter_; }
+  /// Improved-proposal corrections applied so far.
+  std::size_t corrections() const { return corrections_; }
+
+ private:
+  ParticleFilter filter_;
+  const ObservationModel& model_;
+  const WallField& walls_;
+  const RobotLog& log_;
+  const std::vector<ScanObservation>& observations_;
+  FilterRunnerOptions options_;
+  std::optional<std::size_t> last_;  // the last scan stepped
+  double moved_ = 0.0, turned_ = 0.0;  // odometry since the last update
+  std::size_t corrections_ = 0;
+};
+
+/// Moves the cloud of a converged, tracking filter onto the pose `match_scan` finds from the
+/// cloud's mean (the improved proposal's correction; along a degenerate direction the cloud
+/// keeps its own position). Returns whether it moved.
+bool apply_proposal(ParticleFilter& filter, const WallField& walls, const ScanObservation& points,
+                    const ScanMatchOptions& options);
+
+}  // namespace floorgrid

@@ -1,0 +1,144 @@
+#include "floorgrid/localization/plan_registration.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <unordered_set>
+
+#include "floorgrid/core/error.hpp"
+#include "floorgrid/core/random.hpp"
+
+namespace floorgrid {
+
+ScanObservation build_submap(const RobotLog& log, std::span<const std::size_t> scans,
+                             std::span<const Pose2> poses, const Pose2& origin,
+                             const SubmapOptions& options) {
+  if (!(options.bin > 0.0))
+    throw InputError("must be > 0", {}, 0, "submap.bin");
+  if (scans.size() != poses.size())
+    throw InputError("needs one pose per scan", {}, 0, "submap.poses");
+  std::unordered_set<std::uint64_t> bins;
+  std::vector<Eigen::Vector2d> points;
+  const Pose2 origin_inverse = origin.inverse();
+  for (std::size_t k = 0; k < scans.size(); ++k) {
+    const LaserScan& scan = log.scans.at(scans[k]);
+    const Pose2 robot_in_origin = origin_inverse.compose(poses[k]);
+    const Pose2 laser_in_robot = scan.robot_pose.between(scan.laser_pose);
+    for (std::size_t i = 0; i < scan.ranges.size(); ++i) {
+      if (!scan.is_return(i) || scan.ranges[i] > options.max_range)
+        continue;
+      const double a = laser_in_robot.theta + scan.angle(i);
+      const Eigen::Vector2d in_robot =
+          laser_in_robot.translation() + scan.ranges[i] * Eigen::Vector2d(std::cos(a), std::sin(a));
+      const Eigen::Vector2d p = robot_in_origin.transform(in_robot);
+      const auto bx = static_cast<std::int64_t>(std::floor(p.x() / options.bin));
+      const auto by = static_cast<std::int64_t>(std::floor(p.y() / options.bin));
+      const std::uint64_t key = (static_cast<std::uint64_t>(bx) << 32) ^
+                                (static_cast<std::uint64_t>(by) & 0xffffffffULL);
+      if (bins.insert(key).second)
+        points.push_back(p);
+    }
+  }
+  ScanObservation cloud;
+  const std::size_t keep = std::min(points.size(), std::max<std::size_t>(1, options.max_points));
+  for (std::size_t k = 0; k < keep; ++k) {
+    const Eigen::Vector2d& p = points[k * points.size() / keep];  // evenly thinned
+    cloud.angle.push_back(static_cast<float>(std::atan2(p.y(), p.x())));
+    cloud.range.push_back(static_cast<float>(p.norm()));
+    cloud.end_x.push_back(static_cast<float>(p.x()));
+    cloud.end_y.push_back(static_cast<float>(p.y()));
+    cloud.beam.push_back(static_cast<int>(k));
+  }
+  return cloud;
+}
+
+Pose2 PlanRegistration::plan_pose(const Pose2& pose_in_map) const {
+  const Pose2 relative = origin_in_map_.between(pose_in_map);  // world metres
+  return origin_in_plan_.compose({relative.x / scale_, relative.y / scale_, relative.theta});
+}
+
+void LocalRegistration::add(std::size_t scan, const Pose2& pose_in_map,
+                            const Pose2& pose_in_plan) {
+  const Pair pair{scan, pose_in_map, pose_in_plan};
+  if (pairs_.size() < window_) {
+    pairs_.push_back(pair);
+  } else {
+    pairs_[next_] = pair;
+    next_ = (next_ + 1) % window_;
+  }
+  refit();
+}
+
+bool LocalRegistration::fresh(std::size_t scan, std::size_t min_pairs, std::size_t max_age) const {
+  if (pairs_.size() < std::max<std::size_t>(1, min_pairs))
+    return false;
+  std::size_t newest = 0;
+  for (const Pair& p : pairs_)
+    newest = std::max(newest, p.scan);
+  return scan <= newest + max_age;
+}
+
+void LocalRegistration::clear() {
+  pairs_.clear();
+  next_ = 0;
+}
+
+void LocalRegistration::refit() {
+  // Heading offset: the circular mean of the pairs' heading differences (the positions of a
+  // short window are nearly collinear and cannot fix a rotation); translation from centroids.
+  double s = 0.0, c = 0.0;
+  Eigen::Vector2d map_centroid = Eigen::Vector2d::Zero(), plan_centroid = Eigen::Vector2d::Zero();
+  for (const Pair& p : pairs_) {
+    const double d = normalize_angle(p.plan.theta - p.map.theta);
+    s += std::sin(d);
+    c += std::cos(d);
+    map_centroid += p.map.translation() / scale_;
+    plan_centroid += p.plan.translation();
+  }
+  const double k = static_cast<double>(pairs_.size());
+  const double rotation = std::atan2(s, c);
+  const Eigen::Vector2d t = plan_centroid / k - rotation_2d(rotation) * (map_centroid / k);
+  offset_ = {t.x(), t.y(), rotation};
+}
+
+Pose2 LocalRegistration::plan_pose(const Pose2& pose_in_map) const {
+  const Eigen::Vector2d p = offset_.transform(pose_in_map.translation() / scale_);
+  return {p.x(), p.y(), normalize_angle(pose_in_map.theta + offset_.theta)};
+}
+
+PlanRegistrationResult register_on_plan(const OccupancyGrid& plan, const ObservationModel& model,
+                                        const ScanObservation& submap, const Pose2& submap_origin,
+                                        const std::optional<ScaleRange>& scales, double scale,
+                                        const PlanRegistrationOptions& options, int threads) {
+  if (submap.size() == 0)
+    throw InputError("the run gave no laser endpoints to locate on the plan", {}, 0, "log");
+  ScanObservation cloud = submap;
+  if (!scales) {
+    // A known scale: the cloud in plan metres, hypotheses without a scale of their own.
+    for (std::size_t i = 0; i < cloud.size(); ++i) {
+      cloud.end_x[i] = static_cast<float>(cloud.end_x[i] / scale);
+      cloud.end_y[i] = static_cast<float>(cloud.end_y[i] / scale);
+    }
+  }
+  const FreeSpaceSampler free_space(plan);
+  Random random(1);
+  const HypothesisSeeding seeds =
+      seed_best_hypotheses(free_space, cloud, model, options.seeding, scales, random, threads);
+  PlanRegistrationResult result;
+  result.hypotheses = seeds.scored;
+  result.points = cloud.size();
+  const ParticleSet& best = seeds.particles;
+  const double best_scale = best.has_scale() ? best.scale[0] : scale;
+  result.registration = PlanRegistration(submap_origin, best.pose(0), best_scale);
+  result.log_likelihood = seeds.log_likelihood.front();
+  for (std::size_t i = 1; i < best.size(); ++i) {
+    const double distance = std::hypot(best.x[i] - best.x[0], best.y[i] - best.y[0]);
+    if (distance > 2.0 || std::abs(normalize_angle(best.theta[i] - best.theta[0])) > 0.5) {
+      result.runner_up_log_likelihood = seeds.log_likelihood[i];
+      break;
+    }
+  }
+  return result;
+}
+
+}  // namespace floorgrid
