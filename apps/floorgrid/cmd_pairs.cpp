@@ -1,67 +1,74 @@
 // `floorgrid pairs DATASET --out pairs.csv`: reference pairs by dual Monte Carlo localization.
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
-#include <unistd.h>
 
-#include <algorithm>
-#include <cstdio>
+#include <chrono>
 
 #include "apps/floorgrid/commands.hpp"
+#include "apps/floorgrid/progress.hpp"
+#include "apps/floorgrid/summaries.hpp"
 #include "floorgrid/core/error.hpp"
+#include "floorgrid/io/atomic_file.hpp"
 #include "floorgrid/io/dataset_loader.hpp"
 #include "floorgrid/io/pairs_csv.hpp"
-#include "floorgrid/localization/dual_localizer.hpp"
 
 namespace floorgrid::app {
+
+std::optional<StartPoses> start_poses(const io::LoadedDataset& d) {
+  if (!d.manifest.initial_pose)
+    return std::nullopt;
+  return StartPoses{d.manifest.initial_pose->plan, d.manifest.initial_pose->grid};
+}
+
+const RobotLog& dataset_log(const io::LoadedDataset& d) {
+  if (!d.log)
+    throw InputError("the dataset names no log: pairs need a robot run", d.manifest.manifest_path,
+                     0, "log");
+  return *d.log;
+}
 
 void add_pairs_command(CLI::App& root) {
   auto* cmd = root.add_subcommand("pairs", "Reference pairs by dual Monte Carlo localization");
   struct Args {
     std::string dataset, out;
+    std::uint64_t seed = 1;
   };
   auto args = std::make_shared<Args>();
   cmd->add_option("DATASET", args->dataset, "dataset.yaml or its folder")->required();
-  cmd->add_option("--out", args->out, "pairs CSV to write")->required();
+  cmd->add_option("--out", args->out, "pairs CSV to write (plan_x,plan_y,grid_x,grid_y)")
+      ->required();
+  cmd->add_option("--seed", args->seed, "randomness of the particle filters")->capture_default_str();
   cmd->callback([args] {
+    const std::filesystem::path out(args->out);
+    io::prepare_output_folder(out.parent_path().empty() ? "." : out.parent_path());
     const io::LoadedDataset d = io::load_dataset(args->dataset);
-    if (!d.log)
-      throw InputError("the dataset has no log", d.manifest.manifest_path, 0, "log");
-    std::optional<StartPoses> start;
-    if (d.manifest.initial_pose)
-      start = StartPoses{d.manifest.initial_pose->plan, d.manifest.initial_pose->grid};
-    const bool tty = isatty(fileno(stderr));
-    const auto progress = [&](const DualProgress& p) {
-      if (!tty)
-        return;
-      fmt::print(stderr, "\r{}: {}/{} {} usable {}    ", p.phase, p.scan, p.scans,
-                 p.converged ? "converged" : "--", p.pairs);
-    };
-    const DualLocalization r =
-        localize_dual(d.plan_grid, d.gridmap, *d.log, start, d.manifest.floorplan_scale, {},
-                      progress, d.plan ? &*d.plan : nullptr);
-    if (tty)
-      fmt::print(stderr, "\n");
-    io::write_pairs_csv(r.pairs, args->out);
-    fmt::print("pairs {} scale {:.4f} +- {:.4f} converged {:.3f}\n", r.pairs.size(), r.plan_scale,
-               r.plan_scale_std, r.converged_fraction);
-    for (const auto& [k, v] : r.rejections.by_reason())
-      fmt::print("  rejected {} {}\n", k, v);
-    fmt::print("  global {:.1f} s; scale {:.1f} s; localize {:.1f} s\n",
-               r.global_localization_seconds, r.scale_search_seconds, r.localize_seconds);
-    if (d.truth_warp) {
+    for (const std::string& w : d.warnings)
+      spdlog::warn("{}", w);
+    DualLocalizerOptions options;
+    options.seed = args->seed;
+    ProgressLine progress;
+    const DualLocalization l = localize_dual(
+        d.plan_grid, d.gridmap, dataset_log(d), start_poses(d), d.manifest.floorplan_scale,
+        options,
+        [&](const DualProgress& p) {
+          progress.update(p.phase, p.scan, p.scans, p.converged ? "converged" : "not converged");
+        },
+        d.plan ? &*d.plan : nullptr);
+    progress.finish();
+    io::write_pairs_csv(l.pairs, out);
+    std::optional<ErrorStatistics> errors;
+    if (d.truth_warp && l.pairs.size() > 0) {
       std::vector<double> e;
-      for (Eigen::Index i = 0; i < r.pairs.size(); ++i)
-        e.push_back((d.truth_warp->plan_to_grid(r.pairs.points_in_plan.col(i)) -
-                     r.pairs.points_in_grid.col(i))
+      for (Eigen::Index i = 0; i < l.pairs.size(); ++i)
+        e.push_back((d.truth_warp->plan_to_grid(l.pairs.points_in_plan.col(i)) -
+                     l.pairs.points_in_grid.col(i))
                         .norm());
-      std::sort(e.begin(), e.end());
-      if (!e.empty())
-        fmt::print("  pair error median {:.4f} p90 {:.4f} max {:.4f}; true scale {:.5f}\n",
-                   e[e.size() / 2], e[e.size() * 9 / 10], e.back(),
-                   1.0 / d.truth_warp->plan_scale());
+      errors = error_statistics(std::move(e));
     }
-    for (const auto& n : r.notes)
-      fmt::print("  note {}\n", n);
+    print_localization(l, errors);
+    fmt::print("wrote       {}\n", out.string());
+    if (l.pairs.size() == 0)
+      spdlog::warn("no pairs: the two filters were never converged together on matching scans");
   });
 }
 

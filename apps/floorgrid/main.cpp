@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   floorgrid::app::add_fit_command(root);
   floorgrid::app::add_map_command(root);
   floorgrid::app::add_pairs_command(root);
+  floorgrid::app::add_align_command(root);
 
   try {
     root.parse(argc, argv);

@@ -21,7 +21,13 @@ EvaluationDomain warp_domain(
     const VectorFloorplan& walls, const OccupancyGrid& gridmap,
     const std::function<Eigen::Vector2d(const Eigen::Vector2d&)>& plan_to_grid, double spacing,
     double radius) {
-  const Eigen::Matrix2Xd samples = walls.sample_points(spacing);
+  return warp_domain(walls.sample_points(spacing), gridmap, plan_to_grid, spacing, radius);
+}
+
+EvaluationDomain warp_domain(
+    const Eigen::Matrix2Xd& samples, const OccupancyGrid& gridmap,
+    const std::function<Eigen::Vector2d(const Eigen::Vector2d&)>& plan_to_grid, double spacing,
+    double radius) {
   const DistanceField observed = observed_distance_field(gridmap, 2.0 * radius + 1.0);
   std::vector<Eigen::Index> inside;
   for (Eigen::Index i = 0; i < samples.cols(); ++i) {
@@ -33,7 +39,11 @@ EvaluationDomain warp_domain(
 
 EvaluationDomain hull_domain(const VectorFloorplan& walls, const Eigen::Matrix2Xd& pair_points,
                              double spacing) {
-  const Eigen::Matrix2Xd samples = walls.sample_points(spacing);
+  return hull_domain(walls.sample_points(spacing), pair_points, spacing);
+}
+
+EvaluationDomain hull_domain(const Eigen::Matrix2Xd& samples, const Eigen::Matrix2Xd& pair_points,
+                             double spacing) {
   const auto hull = convex_hull(pair_points);
   std::vector<Eigen::Index> inside;
   for (Eigen::Index i = 0; i < samples.cols(); ++i) {

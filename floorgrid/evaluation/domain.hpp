@@ -23,10 +23,20 @@ EvaluationDomain warp_domain(
     const std::function<Eigen::Vector2d(const Eigen::Vector2d&)>& plan_to_grid,
     double spacing = 0.05, double radius = 0.5);
 
+/// warp_domain over given wall samples (a raster plan's occupied cells) instead of a vector
+/// plan's.
+EvaluationDomain warp_domain(
+    const Eigen::Matrix2Xd& wall_samples, const OccupancyGrid& gridmap,
+    const std::function<Eigen::Vector2d(const Eigen::Vector2d&)>& plan_to_grid,
+    double spacing = 0.05, double radius = 0.5);
+
 /// Wall samples every `spacing` metres inside the convex hull of the manual pairs' plan
 /// points: the domain of a dataset with hand-picked pairs.
 EvaluationDomain hull_domain(const VectorFloorplan& walls,
                              const Eigen::Matrix2Xd& pair_points_in_plan, double spacing = 0.05);
+/// hull_domain over given wall samples.
+EvaluationDomain hull_domain(const Eigen::Matrix2Xd& wall_samples,
+                             const Eigen::Matrix2Xd& pair_points_in_plan, double spacing);
 
 /// Mean, median and 95th percentile of errors (metres).
 struct ErrorStatistics {

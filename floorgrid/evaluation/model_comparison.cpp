@@ -3,6 +3,9 @@
 #include <chrono>
 
 #include "floorgrid/core/error.hpp"
+#include "floorgrid/mapping/model_selection.hpp"
+
+#include <map>
 
 namespace floorgrid {
 
@@ -10,28 +13,46 @@ std::vector<ModelReport> compare_models(const ReferencePairs& pairs, const Evalu
                                         const std::optional<GroundTruth>& truth,
                                         const ModelComparisonOptions& options,
                                         const ModelProgress& progress) {
-  std::vector<ModelReport> reports;
-  for (std::size_t k = 0; k < options.models.size(); ++k) {
+  std::vector<ModelReport> reports(options.models.size());
+  // auto last: it reuses the other models' cross-validation when the folds agree.
+  std::vector<std::size_t> order;
+  for (std::size_t k = 0; k < options.models.size(); ++k)
+    if (options.models[k] != "auto")
+      order.push_back(k);
+  for (std::size_t k = 0; k < options.models.size(); ++k)
+    if (options.models[k] == "auto")
+      order.push_back(k);
+  std::map<std::string, CrossValidationResult> cross_validated;
+  for (std::size_t done = 0; done < order.size(); ++done) {
+    const std::size_t k = order[done];
     const std::string& name = options.models[k];
-    if (progress) progress(name, k, options.models.size());
+    if (progress) progress(name, done, options.models.size());
     ModelReport report;
     report.name = name;
     MappingOptions mapping = options.mapping;
     mapping.model = name;
     try {
       auto model = make_mapping(mapping);
+      if (auto* chooser = dynamic_cast<AutoMapping*>(model.get());
+          chooser && options.cv_folds == mapping.auto_select.cv.folds) {
+        chooser->reuse_cross_validation(cross_validated);
+      }
       report.summary = model->fit(pairs);
-      if (options.cv_folds >= 2) {
+      if (options.cv_folds >= 2 && name == "auto") {
+        report.summary.cv_error_m = model->summary().cv_error_m;
+      } else if (options.cv_folds >= 2) {
         CrossValidationOptions cv;
         cv.folds = options.cv_folds;
+        cv.max_pairs = mapping.auto_select.cv.max_pairs;
         const CrossValidationResult r = cross_validate(mapping, pairs, cv);
         model->set_cv_error(r.mean_error_m);
         report.summary.cv_error_m = r.mean_error_m;
+        cross_validated[name] = r;
       }
       report.model = std::move(model);
     } catch (const InputError& e) {
       report.failure = e.what();
-      reports.push_back(std::move(report));
+      reports[k] = std::move(report);
       continue;
     }
     const auto start = std::chrono::steady_clock::now();
@@ -45,7 +66,7 @@ std::vector<ModelReport> compare_models(const ReferencePairs& pairs, const Evalu
                                            options.back_and_forth_points);
     report.evaluate_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    reports.push_back(std::move(report));
+    reports[k] = std::move(report);
   }
   if (progress) progress("", options.models.size(), options.models.size());
   return reports;

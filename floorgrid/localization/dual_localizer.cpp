@@ -144,6 +144,10 @@ DualLocalization localize_dual(const OccupancyGrid& drawn_plan, const OccupancyG
                                 visible.applied ? &visible.grid : nullptr)
                     : WallField(plan, o.walls);
   const WallField grid_walls(grid, o.walls);
+  std::optional<GridRayCaster> plan_caster;
+  if (o.plan_beam_consistency)
+    plan_caster.emplace(plan);
+  const GridRayCaster* plan_rays = plan_caster ? &*plan_caster : nullptr;
   std::vector<ScanObservation> plan_obs, grid_obs;
   plan_obs.reserve(n);
   grid_obs.reserve(n);
@@ -271,7 +275,7 @@ DualLocalization localize_dual(const OccupancyGrid& drawn_plan, const OccupancyG
     filter.initialize_tracking(
         plan_start(result.start.plan, start_sigma, start_heading_sigma, scale, 0.0), plan);
     FilterRunner runner(std::move(filter), plan_model.model(), plan_walls, log, plan_obs,
-                        o.plan_runner);
+                        o.plan_runner, plan_rays);
     int disagreeing = 0, unconverged = 0;
     std::size_t usable = 0;
     LocalRegistration local(o.local_window, scale);
@@ -320,7 +324,7 @@ DualLocalization localize_dual(const OccupancyGrid& drawn_plan, const OccupancyG
   // ---- 5. the scale refitted with the refined plan poses, then the pairs ----
   clock = Clock::now();
   if (result.plan_scale_estimated && o.refine_poses && o.refit_scale)
-    scale = refit_plan_scale(result, log, plan_walls, o.plan_runner, scale);
+    scale = refit_plan_scale(result, log, plan_walls, o.plan_runner, scale, plan_rays);
   result.scale_search_seconds += seconds_since(clock);
   result.plan_scale = scale;
   clock = Clock::now();

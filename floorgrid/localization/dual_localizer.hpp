@@ -66,6 +66,10 @@ struct DualLocalizerOptions {
   /// two lines (the outline's outer line, a wall's hollow) are dropped (visible_walls).
   bool visible_walls_only = true;
   VisibleWallsOptions visible;  ///< how the visible walls are found
+  /// Match scans onto the plan by their beams that reach the plan's first wall along them
+  /// (FilterRunnerOptions::beam_tolerance): the endpoints on furniture a plan lacks would pull
+  /// the match towards the walls behind.
+  bool plan_beam_consistency = true;
   PairExtractionOptions pairs;  ///< how endpoints become pairs
   /// Pairs only from scans whose scan match succeeded on both maps (the refined poses), and
   /// never from a scan whose match is degenerate in either (a corridor, an aisle).
@@ -157,6 +161,9 @@ struct DualLocalization {
   double converged_fraction = 0.0;
   /// Scan index ranges [first, last] where both filters were converged.
   std::vector<std::pair<std::size_t, std::size_t>> converged_periods;
+  /// The longest run of scans between two converged periods (how long re-converging took at
+  /// worst), 0 with fewer than two periods.
+  std::size_t longest_gap = 0;
   double plan_scale = 1.0;            ///< world metres per plan metre used for the pairs
   double plan_scale_std = 0.0;        ///< its uncertainty (0 when given)
   bool plan_scale_estimated = false;  ///< whether it was searched

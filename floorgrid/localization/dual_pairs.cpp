@@ -1,5 +1,6 @@
 #include "floorgrid/localization/dual_pairs.hpp"
 
+#include <algorithm>
 #include <optional>
 
 namespace floorgrid {
@@ -11,7 +12,8 @@ bool usable_for_pairs(const ScanRecord& r, bool refine) {
 }
 
 double refit_plan_scale(DualLocalization& result, const RobotLog& log, const WallField& plan_walls,
-                        const FilterRunnerOptions& plan_runner, double scale) {
+                        const FilterRunnerOptions& plan_runner, double scale,
+                        const GridRayCaster* plan_caster) {
   std::vector<ScanObservation> points;
   std::vector<Pose2> poses;
   std::vector<std::size_t> which;
@@ -30,7 +32,8 @@ double refit_plan_scale(DualLocalization& result, const RobotLog& log, const Wal
   views.reserve(points.size());
   for (const ScanObservation& p : points)
     views.push_back(&p);
-  const ScaleFit fit = fit_scale(plan_walls, views, poses, scale, plan_runner.match);
+  const ScaleFit fit = fit_scale(plan_walls, views, poses, scale, plan_runner.match, 30, 20,
+                                 plan_caster, plan_runner.beam_tolerance);
   result.plan_scale_std = fit.scale_std;
   for (std::size_t k = 0; k < which.size(); ++k)
     result.scans[which[k]].plan.match.pose = fit.poses[k];
@@ -92,6 +95,12 @@ void summarize_convergence(DualLocalization& result) {
     } else {
       result.converged_periods.emplace_back(r.scan, r.scan);
     }
+  }
+  result.longest_gap = 0;
+  for (std::size_t k = 1; k < result.converged_periods.size(); ++k) {
+    result.longest_gap =
+        std::max(result.longest_gap,
+                 result.converged_periods[k].first - result.converged_periods[k - 1].second - 1);
   }
   if (first) {
     result.converged_fraction =

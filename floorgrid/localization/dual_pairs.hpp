@@ -12,7 +12,8 @@ bool usable_for_pairs(const ScanRecord& record, bool refine);
 /// (fit_scale) and stores the refitted poses in the records; returns the scale (or `scale`
 /// when fewer than ten scans are usable) and sets result.plan_scale_std.
 double refit_plan_scale(DualLocalization& result, const RobotLog& log, const WallField& plan_walls,
-                        const FilterRunnerOptions& plan_runner, double scale);
+                        const FilterRunnerOptions& plan_runner, double scale,
+                        const GridRayCaster* plan_caster = nullptr);
 
 /// The pairs of every scan (result.pairs, result.rejections, ScanRecord::pairs) at the plan
 /// scale result.plan_scale: from the refined poses when `refine`, else the filters' means.

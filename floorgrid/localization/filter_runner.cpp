@@ -7,10 +7,19 @@
 
 namespace floorgrid {
 
+ScanMatch match_with(const WallField& walls, const ScanObservation& points, const Pose2& pose,
+                     double scale, const ScanMatchOptions& options, const GridRayCaster* caster,
+                     double tolerance) {
+  return caster ? match_scan(walls, points, pose, scale, options, *caster, tolerance)
+                : match_scan(walls, points, pose, scale, options);
+}
+
 bool apply_proposal(ParticleFilter& filter, const WallField& walls, const ScanObservation& points,
-                    const ScanMatchOptions& options) {
+                    const ScanMatchOptions& options, const GridRayCaster* caster,
+                    double tolerance) {
   const PoseEstimate predicted = estimate_pose(filter.particles());
-  const ScanMatch m = match_scan(walls, points, predicted.pose, predicted.scale, options);
+  const ScanMatch m =
+      match_with(walls, points, predicted.pose, predicted.scale, options, caster, tolerance);
   if (!m.ok() && m.failure != ScanMatchFailure::degenerate)
     return false;
   Pose2 to = m.pose;
@@ -28,13 +37,14 @@ bool apply_proposal(ParticleFilter& filter, const WallField& walls, const ScanOb
 FilterRunner::FilterRunner(ParticleFilter filter, const ObservationModel& model,
                            const WallField& walls, const RobotLog& log,
                            const std::vector<ScanObservation>& observations,
-                           const FilterRunnerOptions& options)
+                           const FilterRunnerOptions& options, const GridRayCaster* caster)
     : filter_(std::move(filter)),
       model_(model),
       walls_(walls),
       log_(log),
       observations_(observations),
-      options_(options) {
+      options_(options),
+      caster_(caster) {
   validate(options_.match);
 }
 
@@ -59,7 +69,8 @@ FilterRecord FilterRunner::step(std::size_t i) {
     if (options_.improved_proposal && tracking) {
       filter_.predict(motion);
       points = make_observation(log_.scans[i], options_.match_observation);
-      corrections_ += apply_proposal(filter_, walls_, *points, options_.match);
+      corrections_ += apply_proposal(filter_, walls_, *points, options_.match, caster_,
+                                     options_.beam_tolerance);
       status = filter_.step(OdometryMotion{}, observations_[i], model_, options_.threads);
     } else {
       status = filter_.step(motion, observations_[i], model_, options_.threads);
@@ -79,7 +90,8 @@ FilterRecord FilterRunner::step(std::size_t i) {
   record.pose = now.pose;
   if (options_.refine && record.converged) {
     const ScanObservation points = make_observation(log_.scans[i], options_.match_observation);
-    record.match = match_scan(walls_, points, now.pose, now.scale, options_.match);
+    record.match = match_with(walls_, points, now.pose, now.scale, options_.match, caster_,
+                              options_.beam_tolerance);
     record.matched = true;
   } else {
     record.match.failure = ScanMatchFailure::too_few_inliers;

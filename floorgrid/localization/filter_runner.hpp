@@ -25,6 +25,9 @@ struct FilterRunnerOptions {
   /// pairs are made from).
   bool refine = true;
   ScanMatchOptions match;                     ///< both uses of scan matching
+  /// Map metres: with a ray caster (see FilterRunner), only beams whose range reaches the first
+  /// wall along them within this are matched (beam_consistent).
+  double beam_tolerance = 0.5;
   ObservationOptions match_observation{180};  ///< beams per scan of the matching
   int threads = 2;                            ///< threads of the observation model
 };
@@ -54,9 +57,11 @@ class FilterRunner {
  public:
   /// A runner over `log` with `model` on the map whose walls are `walls`; `observations[i]` is
   /// scan i prepared for `model`. Everything given must outlive the runner.
+  /// With `caster` (the same map's walls), scans are matched by their beams consistent with
+  /// it (for a plan: not the endpoints on furniture it lacks).
   FilterRunner(ParticleFilter filter, const ObservationModel& model, const WallField& walls,
                const RobotLog& log, const std::vector<ScanObservation>& observations,
-               const FilterRunnerOptions& options);
+               const FilterRunnerOptions& options, const GridRayCaster* caster = nullptr);
 
   /// Advances to scan `i` (the motion from the last scan stepped, or none for the first) and
   /// records what the filter did. Scans must come in increasing order.
@@ -76,6 +81,7 @@ class FilterRunner {
   const RobotLog& log_;
   const std::vector<ScanObservation>& observations_;
   FilterRunnerOptions options_;
+  const GridRayCaster* caster_;
   std::optional<std::size_t> last_;  // the last scan stepped
   double moved_ = 0.0, turned_ = 0.0;  // odometry since the last update
   std::size_t corrections_ = 0;
@@ -83,8 +89,15 @@ class FilterRunner {
 
 /// Moves the cloud of a converged, tracking filter onto the pose `match_scan` finds from the
 /// cloud's mean (the improved proposal's correction; along a degenerate direction the cloud
-/// keeps its own position). Returns whether it moved.
+/// keeps its own position). Returns whether it moved. With `caster`, matches the beams
+/// consistent with it (within `tolerance`).
 bool apply_proposal(ParticleFilter& filter, const WallField& walls, const ScanObservation& points,
-                    const ScanMatchOptions& options);
+                    const ScanMatchOptions& options, const GridRayCaster* caster = nullptr,
+                    double tolerance = 0.5);
+
+/// match_scan, by the beams consistent with `caster` when one is given.
+ScanMatch match_with(const WallField& walls, const ScanObservation& points, const Pose2& pose,
+                     double scale, const ScanMatchOptions& options, const GridRayCaster* caster,
+                     double tolerance);
 
 }  // namespace floorgrid

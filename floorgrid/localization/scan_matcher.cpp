@@ -178,10 +178,59 @@ ScanMatch match_scan(const WallField& walls, const ScanObservation& scan, const 
   return m;
 }
 
+ScanObservation beam_consistent(const ScanObservation& scan, const GridRayCaster& walls,
+                                const Pose2& pose, double scale, double tolerance) {
+  ScanObservation kept;
+  kept.max_range = scan.max_range;
+  kept.laser_origin = scan.laser_origin;
+  kept.no_returns = scan.no_returns;
+  const Eigen::Vector2d origin = pose.transform(scan.laser_origin / scale);
+  const double max_range = scan.max_range / scale + 2.0 * tolerance;
+  for (std::size_t j = 0; j < scan.size(); ++j) {
+    const double range = scan.range[j] / scale;
+    const double expected = walls.cast(origin, pose.theta + scan.angle[j], max_range);
+    if (std::abs(range - expected) > tolerance)
+      continue;
+    kept.angle.push_back(scan.angle[j]);
+    kept.range.push_back(scan.range[j]);
+    kept.end_x.push_back(scan.end_x[j]);
+    kept.end_y.push_back(scan.end_y[j]);
+    kept.beam.push_back(scan.beam[j]);
+  }
+  return kept;
+}
+
+ScanMatch match_scan(const WallField& walls, const ScanObservation& scan, const Pose2& initial,
+                     double scale, const ScanMatchOptions& options, const GridRayCaster& caster,
+                     double tolerance) {
+  const ScanObservation kept = beam_consistent(scan, caster, initial, scale, tolerance);
+  ScanMatch m = match_scan(walls, kept, initial, scale, options);
+  // Judged against the whole scan: a pose that explains few beams is not a good match however
+  // well those few fit.
+  m.endpoints = scan.size();
+  if (m.failure != ScanMatchFailure::too_few_inliers &&
+      static_cast<double>(m.inliers) < options.min_inlier_fraction * static_cast<double>(scan.size()))
+    m.failure = ScanMatchFailure::too_few_inliers;
+  return m;
+}
+
 ScaleFit fit_scale(const WallField& walls, std::span<const ScanObservation* const> scans,
                    std::span<const Pose2> poses, double initial_scale,
-                   const ScanMatchOptions& o, int max_iterations, int jackknife_blocks) {
+                   const ScanMatchOptions& o, int max_iterations, int jackknife_blocks,
+                   const GridRayCaster* caster, double tolerance) {
   validate(o);
+  if (caster) {
+    // The same fit on each scan's beams consistent with the walls at its initial pose.
+    std::vector<ScanObservation> kept;
+    kept.reserve(scans.size());
+    for (std::size_t i = 0; i < scans.size(); ++i)
+      kept.push_back(beam_consistent(*scans[i], *caster, poses[i], initial_scale, tolerance));
+    std::vector<const ScanObservation*> views;
+    views.reserve(kept.size());
+    for (const ScanObservation& k : kept)
+      views.push_back(&k);
+    return fit_scale(walls, views, poses, initial_scale, o, max_iterations, jackknife_blocks);
+  }
   if (scans.size() != poses.size() || scans.empty())
     throw InputError("needs as many poses as scans, at least one", {}, 0, "scale_fit.scans");
   if (!(initial_scale > 0.0))

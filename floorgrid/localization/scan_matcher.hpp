@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "floorgrid/geometry/pose2.hpp"
+#include "floorgrid/localization/ray_marching.hpp"
 #include "floorgrid/localization/scan_observation.hpp"
 #include "floorgrid/localization/wall_field.hpp"
 
@@ -72,6 +73,20 @@ struct ScanMatch {
 ScanMatch match_scan(const WallField& walls, const ScanObservation& scan, const Pose2& initial,
                      double scale, const ScanMatchOptions& options = {});
 
+/// The beams of `scan` whose range, seen from `pose` (map frame; ranges divided by `scale`),
+/// reaches the first wall along the beam in `walls` within `tolerance` map metres: endpoints
+/// on furniture the map lacks (short) and beams through walls drawn where there are none
+/// (long) are left out. For matching a scan onto a plan, whose walls are all the laser should
+/// be matched to.
+ScanObservation beam_consistent(const ScanObservation& scan, const GridRayCaster& walls,
+                                const Pose2& pose, double scale, double tolerance);
+
+/// match_scan on the beams of `scan` that are consistent with `walls` at `initial`
+/// (beam_consistent with `tolerance`); the inlier share is still of all the scan's endpoints.
+ScanMatch match_scan(const WallField& walls, const ScanObservation& scan, const Pose2& initial,
+                     double scale, const ScanMatchOptions& options, const GridRayCaster& caster,
+                     double tolerance);
+
 /// A plan's scale fitted jointly with the poses of many scans.
 struct ScaleFit {
   double scale = 1.0;         ///< world metres per map metre
@@ -88,9 +103,12 @@ struct ScaleFit {
 /// a delete-a-block jackknife over `jackknife_blocks` consecutive runs of scans, so errors
 /// shared by neighbouring scans (one misdrawn wall) are not counted as independent.
 /// `scans` and `poses` have the same length (>= 1).
+/// With `caster`, each scan is reduced to its beams consistent with it at its initial pose
+/// (beam_consistent with `tolerance`) first.
 ScaleFit fit_scale(const WallField& walls, std::span<const ScanObservation* const> scans,
                    std::span<const Pose2> poses, double initial_scale,
                    const ScanMatchOptions& options = {}, int max_iterations = 30,
-                   int jackknife_blocks = 20);
+                   int jackknife_blocks = 20, const GridRayCaster* caster = nullptr,
+                   double tolerance = 0.5);
 
 }  // namespace floorgrid

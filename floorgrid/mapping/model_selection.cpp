@@ -121,7 +121,10 @@ void AutoMapping::fit_model(const ReferencePairs& pairs, FitSummary& summary) {
   for (const auto& name : options_->auto_select.candidates) {
     MappingOptions candidate = *options_;
     candidate.model = name;
-    const CrossValidationResult cv = cross_validate(candidate, pairs, options_->auto_select.cv);
+    const auto known = known_.find(name);
+    const CrossValidationResult cv = known != known_.end()
+                                         ? known->second
+                                         : cross_validate(candidate, pairs, options_->auto_select.cv);
     table_[name] = cv.mean_error_m;
     table[name] = {
         {"mean_error_m", std::isfinite(cv.mean_error_m) ? nlohmann::json(cv.mean_error_m)

@@ -65,6 +65,11 @@ class AutoMapping : public PointMapping {
   InverseMapping inverse(const Eigen::Vector2d& point_in_grid) const override;
   std::optional<double> predictive_std(const Eigen::Vector2d& point_in_plan) const override;
 
+  /// Cross-validation results already computed (same folds, pair budget and seed as this
+  /// model's) for some candidates: fit() uses them instead of cross-validating again.
+  void reuse_cross_validation(std::map<std::string, CrossValidationResult> results) {
+    known_ = std::move(results);
+  }
   /// The model chosen (after fit or load).
   const PointMapping& chosen() const { return *chosen_; }
   /// Cross-validated mean error per candidate, metres (infinite: could not be fitted).
@@ -78,6 +83,7 @@ class AutoMapping : public PointMapping {
  private:
   std::unique_ptr<MappingOptions> options_;
   std::unique_ptr<PointMapping> chosen_;
+  std::map<std::string, CrossValidationResult> known_;
   std::map<std::string, double> table_;
 };
 

@@ -91,24 +91,41 @@ Eigen::Vector2d PiecewiseAffineMapping::map_in(int t, const Eigen::Vector3d& b) 
   return b[0] * G.col(v[0]) + b[1] * G.col(v[1]) + b[2] * G.col(v[2]);  // eq. 4.23
 }
 
+Eigen::Vector2d PiecewiseAffineMapping::map_located(
+    const Eigen::Vector2d& p, const DelaunayTriangulation::Located& located) const {
+  if (located.inside || located.hull_edge < 0 || located.triangle < 0)
+    return map_in(located.triangle, located.barycentric);
+  const std::vector<int>& hull = triangulation_->hull();
+  const auto e = static_cast<std::size_t>(located.hull_edge);
+  const int a = hull[e], b = hull[(e + 1) % hull.size()];
+  const auto& P = pairs_.points_in_plan;
+  const auto& G = pairs_.points_in_grid;
+  const Eigen::Vector2d ab = P.col(b) - P.col(a);
+  const double length2 = ab.squaredNorm();
+  const double t = length2 > 0.0 ? std::clamp((p - P.col(a)).dot(ab) / length2, 0.0, 1.0) : 0.0;
+  const Eigen::Vector2d nearest = P.col(a) + t * ab;
+  const Eigen::Vector2d nearest_in_grid = (1.0 - t) * G.col(a) + t * G.col(b);
+  return nearest_in_grid + support_similarity().topLeftCorner<2, 2>() * (p - nearest);
+}
+
 Eigen::Vector2d PiecewiseAffineMapping::forward(const Eigen::Vector2d& p) const {
-  const auto located = triangulation_->locate(p);
-  return map_in(located.triangle, located.barycentric);
+  return map_located(p, triangulation_->locate(p));
 }
 
 Eigen::Matrix2Xd PiecewiseAffineMapping::forward_batch(
     const Eigen::Ref<const Eigen::Matrix2Xd>& points) const {
   const auto located = triangulation_->locate_all(points);
   Eigen::Matrix2Xd out(2, points.cols());
-  for (Eigen::Index i = 0; i < points.cols(); ++i) {
-    out.col(i) = map_in(located[static_cast<std::size_t>(i)].triangle,
-                        located[static_cast<std::size_t>(i)].barycentric);
-  }
+  for (Eigen::Index i = 0; i < points.cols(); ++i)
+    out.col(i) = map_located(points.col(i), located[static_cast<std::size_t>(i)]);
   return out;
 }
 
 Eigen::Matrix2d PiecewiseAffineMapping::jacobian(const Eigen::Vector2d& p) const {
-  const int t = triangulation_->locate(p).triangle;
+  const auto located = triangulation_->locate(p);
+  if (!located.inside && located.hull_edge >= 0)
+    return support_similarity().topLeftCorner<2, 2>();
+  const int t = located.triangle;
   const auto& v = triangulation_->triangles()[static_cast<std::size_t>(t)];
   const auto& P = pairs_.points_in_plan;
   const auto& G = pairs_.points_in_grid;

@@ -10,8 +10,10 @@ namespace floorgrid {
 
 /// `dt` (thesis 3.4, 4.5): the Delaunay triangulation of the plan points (exact predicates);
 /// a plan point maps with its barycentric coordinates into the partner triangle on the grid
-/// (eq. 4.20-4.23). Outside the hull, the triangle on the nearest hull edge extrapolates. The
-/// map is continuous and piecewise affine; the inverse finds the grid triangle holding the
+/// (eq. 4.20-4.23). Outside the hull a point keeps the mapped nearest hull point and moves from
+/// it by the linear part of the pairs' least-squares similarity: continuous at the hull and
+/// bounded however thin the hull's triangles (extrapolating a sliver's own affine map throws
+/// points tens of metres off). The map is continuous and piecewise affine; the inverse finds the grid triangle holding the
 /// point (not invertible where that triangle is flipped against its plan triangle: a fold).
 class PiecewiseAffineMapping : public PointMapping {
  public:
@@ -41,6 +43,9 @@ class PiecewiseAffineMapping : public PointMapping {
  private:
   void build(const ReferencePairs& pairs);
   Eigen::Vector2d map_in(int triangle, const Eigen::Vector3d& barycentric) const;
+  /// The map of `point` located at `located` (inside: its triangle; outside: the hull rule).
+  Eigen::Vector2d map_located(const Eigen::Vector2d& point,
+                              const DelaunayTriangulation::Located& located) const;
 
   ReferencePairs pairs_;
   std::unique_ptr<DelaunayTriangulation> triangulation_;

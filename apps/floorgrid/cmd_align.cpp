@@ -1,0 +1,77 @@
+// `floorgrid align DATASET --out DIR`: pairs, every model fitted and judged, overlays, metrics.
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+
+#include "apps/floorgrid/commands.hpp"
+#include "apps/floorgrid/progress.hpp"
+#include "apps/floorgrid/summaries.hpp"
+#include "floorgrid/core/error.hpp"
+#include "floorgrid/io/alignment_writer.hpp"
+#include "floorgrid/io/atomic_file.hpp"
+#include "floorgrid/io/dataset_loader.hpp"
+
+namespace floorgrid::app {
+
+std::optional<StartPoses> start_poses(const io::LoadedDataset& d);
+const RobotLog& dataset_log(const io::LoadedDataset& d);
+
+void add_align_command(CLI::App& root) {
+  auto* cmd = root.add_subcommand(
+      "align", "The main job: pairs, every model fitted and judged, overlays and metrics");
+  struct Args {
+    std::string dataset, out;
+    std::uint64_t seed = 1;
+    int cv = 5;
+  };
+  auto args = std::make_shared<Args>();
+  cmd->add_option("DATASET", args->dataset, "dataset.yaml or its folder")->required();
+  cmd->add_option("--out", args->out, "output folder (created if needed)")->required();
+  cmd->add_option("--seed", args->seed, "randomness of the filters and the model fits")
+      ->capture_default_str();
+  cmd->add_option("--cv", args->cv, "k of each model's k-fold cross-validation (0: none)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->callback([args] {
+    if (args->cv == 1)
+      throw InputError("must be 0 or at least 2", {}, 0, "--cv");
+    io::prepare_output_folder(args->out);
+    const auto load_start = std::chrono::steady_clock::now();
+    const io::LoadedDataset d = io::load_dataset(args->dataset);
+    for (const std::string& w : d.warnings)
+      spdlog::warn("{}", w);
+    io::AlignmentTimings timings;
+    timings.load =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - load_start).count();
+    const AlignmentInputs inputs{d.plan_grid,
+                                 d.plan ? &*d.plan : nullptr,
+                                 d.plan_wall_samples,
+                                 d.gridmap,
+                                 dataset_log(d),
+                                 start_poses(d),
+                                 d.manifest.floorplan_scale,
+                                 d.truth_warp ? &*d.truth_warp : nullptr,
+                                 d.manual_pairs ? &*d.manual_pairs : nullptr};
+    AlignmentOptions options;
+    options.localization.seed = args->seed;
+    options.models.mapping.common.seed = args->seed;
+    options.models.cv_folds = args->cv;
+    ProgressLine progress;
+    const Alignment a = align(inputs, options, [&](const AlignmentProgress& p) {
+      progress.update(p.stage == "fit" ? "fit " + p.detail : p.detail, p.done, p.total);
+    });
+    progress.finish();
+    print_localization(a.localization, a.pair_errors);
+    if (a.models.empty())
+      spdlog::warn("no pairs: no model could be fitted");
+    print_models(a);
+    const std::string name =
+        d.manifest.name.empty() ? d.manifest.folder().filename().string() : d.manifest.name;
+    const io::AlignmentFiles files = io::write_alignment(a, inputs, name, args->out, timings);
+    fmt::print("\nwrote {} files to {} (metrics.json, model.json, overlays/)\n", files.files.size(),
+               files.folder.string());
+  });
+}
+
+}  // namespace floorgrid::app

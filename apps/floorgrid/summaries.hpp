@@ -1,0 +1,19 @@
+#pragma once
+
+#include <optional>
+
+#include "floorgrid/evaluation/alignment.hpp"
+
+namespace floorgrid::app {
+
+/// Prints what the dual localization did: pairs kept and rejected by reason, convergence,
+/// the plan's scale, the starts found, divergences and timings (and the pair error against a
+/// truth when known).
+void print_localization(const DualLocalization& localization,
+                        const std::optional<ErrorStatistics>& pair_errors);
+
+/// Prints one row per model: errors against the truth, cross-validated error, wall distance,
+/// back-and-forth drift, fit time; and the model `auto` chose.
+void print_models(const Alignment& alignment);
+
+}  // namespace floorgrid::app

@@ -1,0 +1,90 @@
+#pragma once
+
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "floorgrid/evaluation/domain.hpp"
+#include "floorgrid/evaluation/model_comparison.hpp"
+#include "floorgrid/localization/dual_localizer.hpp"
+#include "floorgrid/simulation/plan_truth.hpp"
+
+namespace floorgrid {
+
+/// What the main job works on: a dataset already read (see io::load_dataset).
+struct AlignmentInputs {
+  const OccupancyGrid& plan_grid;              ///< the plan as a grid (plan metres)
+  const VectorFloorplan* plan = nullptr;       ///< a DXF plan's walls (layers filtered), or null
+  const Eigen::Matrix2Xd& plan_wall_samples;   ///< plan wall points every ~5 cm (plan metres)
+  const OccupancyGrid& gridmap;                ///< the robot's map
+  const RobotLog& log;                         ///< the run
+  std::optional<StartPoses> start;             ///< the manifest's initial poses
+  std::optional<double> plan_scale;            ///< the manifest's scale (nullopt: auto)
+  const PlanTruth* truth_warp = nullptr;       ///< a simulator's exact truth, or null
+  const ReferencePairs* manual_pairs = nullptr;  ///< hand-picked truth pairs, or null
+};
+
+/// Every setting of the main job.
+struct AlignmentOptions {
+  DualLocalizerOptions localization;  ///< how pairs are made
+  ModelComparisonOptions models;      ///< which models, cross-validation, back-and-forth
+  /// Metres: wall distances are also summarized over the plan wall points this close to a
+  /// pair (where the models have data).
+  double near_pairs = 2.0;
+};
+
+/// How far a model puts the plan's walls from the gridmap's walls (no truth needed): each plan
+/// wall point mapped to the grid, its distance to the nearest occupied gridmap cell.
+struct WallDistance {
+  std::size_t points = 0;                ///< wall points mapped
+  double median_m = 0.0;                 ///< median distance over them
+  std::size_t near_points = 0;           ///< of which within near_pairs of a pair
+  double near_median_m = 0.0;            ///< median distance over those
+  std::vector<double> distances;         ///< per wall point (plan_wall_samples order), metres
+};
+
+/// One model's judgement.
+struct ModelAlignment {
+  ModelReport report;         ///< fit, errors against the truth, back-and-forth
+  WallDistance wall_distance; ///< against the gridmap's walls
+};
+
+/// Progress of the main job.
+struct AlignmentProgress {
+  std::string stage;   ///< "localize", "fit", "evaluate"
+  std::string detail;  ///< the phase or model
+  std::size_t done = 0;
+  std::size_t total = 0;
+};
+
+/// What the main job found.
+struct Alignment {
+  DualLocalization localization;               ///< pairs and how they were made
+  std::optional<ErrorStatistics> pair_errors;  ///< pairs against the truth (with a truth)
+  EvaluationDomain domain;                     ///< where models are judged
+  std::vector<ModelAlignment> models;          ///< in the order fitted
+  std::string chosen;                          ///< the model `auto` chose ("" without auto)
+  double fit_seconds = 0.0;                    ///< all fits and cross-validations
+  double evaluate_seconds = 0.0;               ///< all judging
+  /// The truth as a function (plan -> grid), when the dataset has one.
+  std::optional<GroundTruth> truth;
+};
+
+/// The main job (SPEC `align`): reference pairs by dual Monte Carlo localization, every model
+/// fitted to them and judged against the truth over its domain (a simulator's warp: wall
+/// points where the gridmap saw something; manual pairs through the dt model: wall points
+/// inside their hull), and against the gridmap's walls. A model that cannot be fitted is
+/// reported, not fatal. InputError when the localization fails (see localize_dual).
+Alignment align(const AlignmentInputs& inputs, const AlignmentOptions& options = {},
+                const std::function<void(const AlignmentProgress&)>& progress = {});
+
+/// The distance from each plan wall point, mapped by `plan_to_grid`, to the nearest occupied
+/// cell of `gridmap`, summarized over all points and over those within `near` metres of a
+/// pair's plan point.
+WallDistance wall_distance(const Eigen::Matrix2Xd& plan_wall_samples, const Eigen::Matrix2Xd& mapped,
+                           const OccupancyGrid& gridmap, const Eigen::Matrix2Xd& pair_points_in_plan,
+                           double near);
+
+}  // namespace floorgrid

@@ -1,0 +1,160 @@
+#include "floorgrid/io/alignment_writer.hpp"
+
+#include <chrono>
+#include <cmath>
+
+#include "floorgrid/evaluation/overlay.hpp"
+#include "floorgrid/io/atomic_file.hpp"
+#include "floorgrid/io/image_io.hpp"
+#include "floorgrid/io/model_io.hpp"
+#include "floorgrid/io/pairs_csv.hpp"
+#include "floorgrid/mapping/model_selection.hpp"
+
+namespace floorgrid::io {
+
+namespace {
+
+using nlohmann::json;
+
+/// A number, or null when it is not finite (JSON has no infinity).
+json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+json model_json(const ModelAlignment& m) {
+  const ModelReport& r = m.report;
+  json j = json::object();
+  if (!r.failure.empty()) {
+    j["failure"] = r.failure;
+    return j;
+  }
+  if (r.errors) {
+    j["mean_error_m"] = number(r.errors->mean);
+    j["median_error_m"] = number(r.errors->median);
+    j["p95_error_m"] = number(r.errors->p95);
+    j["max_error_m"] = number(r.errors->max);
+    j["error_histogram"] = r.histogram;
+  }
+  j["fit_seconds"] = number(r.summary.seconds);
+  j["cv_error_m"] = r.summary.cv_error_m ? number(*r.summary.cv_error_m) : json(nullptr);
+  j["rms_m"] = number(r.summary.rms_m);
+  j["pairs_used"] = r.summary.pairs_used;
+  if (r.summary.inliers)
+    j["inliers"] = *r.summary.inliers;
+  j["back_and_forth"] = {{"min_m", number(r.back_and_forth.min_m)},
+                         {"mean_m", number(r.back_and_forth.mean_m)},
+                         {"max_m", number(r.back_and_forth.max_m)},
+                         {"points", r.back_and_forth.points},
+                         {"not_invertible", r.back_and_forth.not_invertible}};
+  j["wall_distance_median_m"] = number(m.wall_distance.median_m);
+  j["wall_distance_near_pairs_median_m"] = number(m.wall_distance.near_median_m);
+  j["wall_points_near_pairs"] = m.wall_distance.near_points;
+  return j;
+}
+
+/// The gridmap with the plan's walls drawn through `plan_to_grid`.
+void draw_walls(RgbImage& picture, const AlignmentInputs& in,
+                const std::function<Eigen::Vector2d(const Eigen::Vector2d&)>& plan_to_grid,
+                const Colour& colour) {
+  if (in.plan) {
+    draw_plan(picture, in.gridmap.geometry(), *in.plan, plan_to_grid, colour);
+    return;
+  }
+  Eigen::Matrix2Xd mapped(2, in.plan_wall_samples.cols());
+  for (Eigen::Index i = 0; i < mapped.cols(); ++i)
+    mapped.col(i) = plan_to_grid(in.plan_wall_samples.col(i));
+  draw_points(picture, in.gridmap.geometry(), mapped, colour, 0);
+}
+
+}  // namespace
+
+json metrics_json(const Alignment& a, const std::string& dataset, const AlignmentTimings& t) {
+  const DualLocalization& l = a.localization;
+  json j;
+  j["format"] = "floorgrid-metrics";
+  j["version"] = 1;
+  j["dataset"] = dataset;
+  json pairs;
+  pairs["count"] = l.pairs.size();
+  pairs["rejected"] = json::object();
+  for (const auto& [reason, count] : l.rejections.by_reason())
+    pairs["rejected"][reason] = count;
+  pairs["converged_fraction"] = number(l.converged_fraction);
+  pairs["converged_periods"] = l.converged_periods.size();
+  pairs["scans"] = l.scans.size();
+  pairs["error_median_m"] = a.pair_errors ? number(a.pair_errors->median) : json(nullptr);
+  if (a.pair_errors) {
+    pairs["error_mean_m"] = number(a.pair_errors->mean);
+    pairs["error_p95_m"] = number(a.pair_errors->p95);
+  }
+  j["pairs"] = pairs;
+  j["plan_scale"] = number(l.plan_scale);
+  j["plan_scale_std"] = number(l.plan_scale_std);
+  j["plan_scale_estimated"] = l.plan_scale_estimated;
+  j["localization"] = {
+      {"grid_start_scan", l.grid_start_scan},
+      {"plan_start_scan", l.plan_start_scan},
+      {"start_plan", {l.start.plan.x, l.start.plan.y, l.start.plan.theta}},
+      {"start_grid", {l.start.grid.x, l.start.grid.y, l.start.grid.theta}},
+      {"plan_divergences", l.plan_divergences.by_reason},
+      {"grid_divergences", l.grid_divergences.by_reason},
+      {"notes", l.notes}};
+  j["domain"] = {{"kind", a.domain.kind}, {"points", a.domain.points_in_plan.cols()}};
+  j["models"] = json::object();
+  for (const ModelAlignment& m : a.models)
+    j["models"][m.report.name] = model_json(m);
+  j["chosen_model"] = a.chosen.empty() ? json(nullptr) : json(a.chosen);
+  j["timings_s"] = {{"load", t.load},
+                    {"global_localization", l.global_localization_seconds},
+                    {"scale_search", l.scale_search_seconds},
+                    {"localize", l.localize_seconds},
+                    {"pairs", l.pairs_seconds},
+                    {"fit", a.fit_seconds},
+                    {"evaluate", a.evaluate_seconds},
+                    {"write", t.write}};
+  return j;
+}
+
+AlignmentFiles write_alignment(const Alignment& a, const AlignmentInputs& in,
+                               const std::string& dataset, const std::filesystem::path& folder,
+                               AlignmentTimings& timings) {
+  const auto start = std::chrono::steady_clock::now();
+  prepare_output_folder(folder);
+  prepare_output_folder(folder / "overlays");
+  AlignmentFiles files{folder, {}};
+  write_pairs_csv(a.localization.pairs, folder / "pairs.csv");
+  files.files.emplace_back("pairs.csv");
+  const RgbImage background = grid_picture(in.gridmap);
+  for (const ModelAlignment& m : a.models) {
+    if (!m.report.model)
+      continue;
+    const PointMapping& model = *m.report.model;
+    const std::string name = m.report.name;
+    write_model(model, folder / ("model-" + name + ".json"));
+    files.files.emplace_back("model-" + name + ".json");
+    RgbImage picture = background;
+    if (a.truth)
+      draw_walls(picture, in, *a.truth, {0, 170, 0});
+    draw_walls(picture, in, [&](const Eigen::Vector2d& p) { return model.forward(p); },
+               {220, 0, 0});
+    const std::filesystem::path overlay =
+        std::filesystem::path("overlays") / ("overlay-" + name + ".png");
+    write_png_rgb(folder / overlay, picture.width, picture.height, picture.rgb);
+    files.files.push_back(overlay);
+  }
+  // auto's choice is also a model of its own: model.json is that model's file.
+  if (!a.chosen.empty()) {
+    for (const ModelAlignment& m : a.models) {
+      if (m.report.name == "auto" && m.report.model) {
+        if (const auto* chooser = dynamic_cast<const AutoMapping*>(m.report.model.get())) {
+          write_model(chooser->chosen(), folder / "model.json");
+          files.files.emplace_back("model.json");
+        }
+      }
+    }
+  }
+  timings.write = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  write_file_atomically(folder / "metrics.json", metrics_json(a, dataset, timings).dump(1) + "\n");
+  files.files.emplace_back("metrics.json");
+  return files;
+}
+
+}  // namespace floorgrid::io

@@ -1,0 +1,38 @@
+#pragma once
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "floorgrid/evaluation/alignment.hpp"
+
+namespace floorgrid::io {
+
+/// Wall-clock seconds of the main job's stages (metrics.json `timings_s`); the localization's
+/// own stages come from the Alignment.
+struct AlignmentTimings {
+  double load = 0.0;   ///< reading the dataset
+  double write = 0.0;  ///< writing the outputs (all but metrics.json itself)
+};
+
+/// metrics.json (SPEC, a contract): pairs, plan scale, domain, per model errors against the
+/// truth, fit time, cross-validated error, back-and-forth drift and wall distances, timings.
+nlohmann::json metrics_json(const Alignment& alignment, const std::string& dataset,
+                            const AlignmentTimings& timings);
+
+/// What write_alignment wrote.
+struct AlignmentFiles {
+  std::filesystem::path folder;             ///< the output folder
+  std::vector<std::filesystem::path> files; ///< every file, relative to the folder
+};
+
+/// Writes the main job's results into `folder` (created when missing), each file atomically:
+/// pairs.csv, model-<name>.json per fitted model, model.json (the model `auto` chose),
+/// overlays/overlay-<name>.png (the plan's walls through each model, red, and through the truth
+/// when known, green, on the gridmap) and metrics.json last. `timings.write` is filled in.
+AlignmentFiles write_alignment(const Alignment& alignment, const AlignmentInputs& inputs,
+                               const std::string& dataset, const std::filesystem::path& folder,
+                               AlignmentTimings& timings);
+
+}  // namespace floorgrid::io
