@@ -21,15 +21,14 @@ build: configure
 
 DATA ?= ../shared/data
 
-# For now the main job is the simulated default building and `floorgrid info` on it and on real
-# files; it becomes the full pipeline once the aligner exists.
+# The main job on the built-in default: simulate an office, align it (pairs, every model,
+# metrics, overlays), then show what real files look like to `info`.
 demo: build
-	./$(BUILD_DIR)/floorgrid simulate --preset office --seed 1 --out $(DEMO_OUT) --preview
-	./$(BUILD_DIR)/floorgrid info $(DEMO_OUT)
+	./$(BUILD_DIR)/floorgrid demo --out $(DEMO_OUT)
 	@if [ -d "$(DATA)" ]; then \
 	  ./$(BUILD_DIR)/floorgrid info $(DATA)/bonn/GMap/GMap.yaml; \
 	else echo "demo: $(DATA) is missing: no real files to show"; fi
-	@echo "demo: results in $(DEMO_OUT)/ (preview.png shows the plan drawn on the gridmap)"
+	@echo "demo: results in $(DEMO_OUT)/align (metrics.json, model.json, overlays/)"
 
 test: build
 	ctest --test-dir $(BUILD_DIR) --output-on-failure -j $(JOBS)

@@ -17,6 +17,45 @@ namespace floorgrid::app {
 std::optional<StartPoses> start_poses(const io::LoadedDataset& d);
 const RobotLog& dataset_log(const io::LoadedDataset& d);
 
+void run_align(const std::string& dataset, const std::string& out, std::uint64_t seed, int cv) {
+  if (cv == 1)
+    throw InputError("must be 0 or at least 2", {}, 0, "--cv");
+  io::prepare_output_folder(out);
+  const auto load_start = std::chrono::steady_clock::now();
+  const io::LoadedDataset d = io::load_dataset(dataset);
+  for (const std::string& w : d.warnings)
+    spdlog::warn("{}", w);
+  io::AlignmentTimings timings;
+  timings.load = std::chrono::duration<double>(std::chrono::steady_clock::now() - load_start).count();
+  const AlignmentInputs inputs{d.plan_grid,
+                               d.plan ? &*d.plan : nullptr,
+                               d.plan_wall_samples,
+                               d.gridmap,
+                               dataset_log(d),
+                               start_poses(d),
+                               d.manifest.floorplan_scale,
+                               d.truth_warp ? &*d.truth_warp : nullptr,
+                               d.manual_pairs ? &*d.manual_pairs : nullptr};
+  AlignmentOptions options;
+  options.localization.seed = seed;
+  options.models.mapping.common.seed = seed;
+  options.models.cv_folds = cv;
+  ProgressLine progress;
+  const Alignment a = align(inputs, options, [&](const AlignmentProgress& p) {
+    progress.update(p.stage == "fit" ? "fit " + p.detail : p.detail, p.done, p.total);
+  });
+  progress.finish();
+  print_localization(a.localization, a.pair_errors);
+  if (a.models.empty())
+    spdlog::warn("no pairs: no model could be fitted");
+  print_models(a);
+  const std::string name =
+      d.manifest.name.empty() ? d.manifest.folder().filename().string() : d.manifest.name;
+  const io::AlignmentFiles files = io::write_alignment(a, inputs, name, out, timings);
+  fmt::print("\nwrote {} files to {} (metrics.json, model.json, overlays/)\n", files.files.size(),
+             files.folder.string());
+}
+
 void add_align_command(CLI::App& root) {
   auto* cmd = root.add_subcommand(
       "align", "The main job: pairs, every model fitted and judged, overlays and metrics");
@@ -33,45 +72,7 @@ void add_align_command(CLI::App& root) {
   cmd->add_option("--cv", args->cv, "k of each model's k-fold cross-validation (0: none)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
-  cmd->callback([args] {
-    if (args->cv == 1)
-      throw InputError("must be 0 or at least 2", {}, 0, "--cv");
-    io::prepare_output_folder(args->out);
-    const auto load_start = std::chrono::steady_clock::now();
-    const io::LoadedDataset d = io::load_dataset(args->dataset);
-    for (const std::string& w : d.warnings)
-      spdlog::warn("{}", w);
-    io::AlignmentTimings timings;
-    timings.load =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - load_start).count();
-    const AlignmentInputs inputs{d.plan_grid,
-                                 d.plan ? &*d.plan : nullptr,
-                                 d.plan_wall_samples,
-                                 d.gridmap,
-                                 dataset_log(d),
-                                 start_poses(d),
-                                 d.manifest.floorplan_scale,
-                                 d.truth_warp ? &*d.truth_warp : nullptr,
-                                 d.manual_pairs ? &*d.manual_pairs : nullptr};
-    AlignmentOptions options;
-    options.localization.seed = args->seed;
-    options.models.mapping.common.seed = args->seed;
-    options.models.cv_folds = args->cv;
-    ProgressLine progress;
-    const Alignment a = align(inputs, options, [&](const AlignmentProgress& p) {
-      progress.update(p.stage == "fit" ? "fit " + p.detail : p.detail, p.done, p.total);
-    });
-    progress.finish();
-    print_localization(a.localization, a.pair_errors);
-    if (a.models.empty())
-      spdlog::warn("no pairs: no model could be fitted");
-    print_models(a);
-    const std::string name =
-        d.manifest.name.empty() ? d.manifest.folder().filename().string() : d.manifest.name;
-    const io::AlignmentFiles files = io::write_alignment(a, inputs, name, args->out, timings);
-    fmt::print("\nwrote {} files to {} (metrics.json, model.json, overlays/)\n", files.files.size(),
-               files.folder.string());
-  });
+  cmd->callback([args] { run_align(args->dataset, args->out, args->seed, args->cv); });
 }
 
 }  // namespace floorgrid::app

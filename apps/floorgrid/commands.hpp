@@ -17,5 +17,7 @@ void add_map_command(CLI::App& root);
 void add_pairs_command(CLI::App& root);
 /// `floorgrid align`.
 void add_align_command(CLI::App& root);
+/// `floorgrid demo`.
+void add_demo_command(CLI::App& root);
 
 }  // namespace floorgrid::app
