@@ -149,6 +149,10 @@ int main(int argc, char** argv) {
   double plan_sigma = 0.0, beam_sigma = 0.0, beam_temp = 0.0;
   bool no_proposal = false, bad_pairs = false;
   double local_d = 0, local_h = 0;
+  std::optional<Pose2> grid_offset;
+  std::size_t max_scans = 0;
+  int search_scans = 0;
+  bool search_lf = false;
   for (int i = 2; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--global")
@@ -176,6 +180,15 @@ int main(int argc, char** argv) {
     else if (a == "--local" && i + 2 < argc) {
       local_d = std::stod(argv[++i]);
       local_h = std::stod(argv[++i]);
+    } else if (a == "--grid-offset" && i + 3 < argc) {
+      grid_offset = Pose2{std::stod(argv[i + 1]), std::stod(argv[i + 2]), std::stod(argv[i + 3])};
+      i += 3;
+    } else if (a == "--scans" && i + 1 < argc) {
+      max_scans = std::stoul(argv[++i]);
+    } else if (a == "--search-scans" && i + 1 < argc) {
+      search_scans = std::stoi(argv[++i]);
+    } else if (a == "--search-lf") {
+      search_lf = true;
     } else if (a == "--bad-pairs")
       bad_pairs = true;
     else if (a == "--no-proposal")
@@ -199,14 +212,23 @@ int main(int argc, char** argv) {
     o.local_distance = local_d;
     o.local_heading = local_h;
   }
+  if (search_scans)
+    o.scale_search_scans = search_scans;
+  if (search_lf)
+    o.scale_search_model = ObservationModelKind::likelihood_field;
   if (no_proposal)
     o.plan_runner.improved_proposal = o.grid_runner.improved_proposal = false;
   std::optional<StartPoses> start;
   if (d.manifest.initial_pose && !global)
     start = StartPoses{d.manifest.initial_pose->plan, d.manifest.initial_pose->grid};
+  if (start && grid_offset)
+    start->grid = start->grid.compose(*grid_offset);
+  RobotLog log = *d.log;
+  if (max_scans)
+    log.scans.resize(std::min(max_scans, log.scans.size()));
   const auto t0 = std::chrono::steady_clock::now();
   const DualLocalization r =
-      localize_dual(d.plan_grid, d.gridmap, *d.log, start, d.manifest.floorplan_scale, o, {},
+      localize_dual(d.plan_grid, d.gridmap, log, start, d.manifest.floorplan_scale, o, {},
                     d.plan ? &*d.plan : nullptr);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -243,6 +265,12 @@ int main(int argc, char** argv) {
   fmt::print("start     grid scan {} at {:.2f},{:.2f},{:.2f}; plan scan {} at {:.2f},{:.2f},{:.2f}\n",
              r.grid_start_scan, r.start.grid.x, r.start.grid.y, r.start.grid.theta,
              r.plan_start_scan, r.start.plan.x, r.start.plan.y, r.start.plan.theta);
+  if (r.registration)
+    fmt::print("registration: {} points, {} hypotheses, ll {:.1f} (runner-up {:.1f}), plan origin {:.2f},{:.2f},{:.2f} scale {:.4f}\n",
+               r.registration->points, r.registration->hypotheses, r.registration->log_likelihood,
+               r.registration->runner_up_log_likelihood, r.registration->registration.origin_in_plan().x,
+               r.registration->registration.origin_in_plan().y, r.registration->registration.origin_in_plan().theta,
+               r.registration->registration.scale());
   fmt::print("scale     {:.5f} +- {:.5f} (search {:.5f} +- {:.5f})\n", r.plan_scale,
              r.plan_scale_std, r.plan_scale_search, r.plan_scale_search_std);
   fmt::print("converged {:.3f} in {} periods; plan re-initialized {} times; corrections plan {} grid {}\n",

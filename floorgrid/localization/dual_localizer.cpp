@@ -25,6 +25,10 @@ ParticleFilterOptions default_grid_filter_options() {
   o.recovery.max_augmented_fraction = 0.0;
   o.recovery.min_fast_slow_ratio = 0.0;
   o.convergence.min_ess_ratio = 0.01;
+  // The gridmap holds what the laser sees: a filter in the right place explains most of a
+  // scan (about 0.9 of the mean beam likelihood), one in a look-alike place far less.
+  o.convergence.min_beam_likelihood = 0.5;
+  o.recovery.min_beam_likelihood = 0.35;
   return o;
 }
 
@@ -73,13 +77,17 @@ TrackingStart plan_start(const Pose2& pose, double position_sigma, double headin
 }
 
 /// The scale search: the plan filter tracks `scans` scans from `first` with scales on its
-/// particles; the mean and spread of its estimates over the second half of the window.
+/// particles; the mean and spread of its estimates over the second half of the window. The
+/// converged scans' poses are added to `poses` (scan index, pose).
 std::pair<double, double> search_scale(FilterRunner& runner, std::size_t first, std::size_t scans,
-                                       std::size_t n, std::vector<std::string>& notes) {
+                                       std::size_t n, std::vector<std::string>& notes,
+                                       std::vector<std::pair<std::size_t, Pose2>>& poses) {
   std::vector<double> means, variances;
   const std::size_t end = std::min(n, first + scans);
   for (std::size_t i = first; i < end; ++i) {
     const FilterRecord r = runner.step(i);
+    if (r.converged)
+      poses.emplace_back(i, r.pose);
     if (i >= first + (end - first) / 2 && r.converged) {
       means.push_back(r.estimate.scale);
       variances.push_back(r.estimate.scale_std * r.estimate.scale_std);
@@ -141,8 +149,9 @@ DualLocalization localize_dual(const OccupancyGrid& drawn_plan, const OccupancyG
   const MapModel grid_model = make_model(grid, o.grid_likelihood, o.grid_model, o.beam);
   const WallField plan_walls =
       plan_geometry ? WallField(*plan_geometry, plan.geometry(), o.walls,
-                                visible.applied ? &visible.grid : nullptr)
-                    : WallField(plan, o.walls);
+                                visible.applied ? &visible.grid : nullptr,
+                                visible.applied ? &visible.room : nullptr)
+                    : WallField(plan, o.walls, visible.applied ? &visible.room : nullptr);
   const WallField grid_walls(grid, o.walls);
   std::optional<GridRayCaster> plan_caster;
   if (o.plan_beam_consistency)
@@ -157,6 +166,7 @@ DualLocalization localize_dual(const OccupancyGrid& drawn_plan, const OccupancyG
   }
 
   // ---- 1. the gridmap filter: global localization (or the given start), then tracking ----
+  bool start_held = start.has_value();  // the given start: did the gridmap filter keep to it?
   {
     ParticleFilter filter(o.grid_filter, o.seed + 1);
     if (start) {
@@ -174,9 +184,18 @@ DualLocalization localize_dual(const OccupancyGrid& drawn_plan, const OccupancyG
     std::optional<std::size_t> first_converged;
     for (std::size_t i = start ? 0 : 1; i < n; ++i) {
       FilterRecord& r = result.scans[i].grid = runner.step(i);
-      if (r.diverged)
+      if (r.diverged) {
         count_divergence(result.grid_divergences,
                          std::string(to_string(runner.filter().status().divergence.reason)));
+        start_held = start_held && first_converged.has_value();
+        // Lost on the gridmap: localize globally again from this scan's best hypotheses (far
+        // more reliable than waiting for the recovery's injected particles to find the place).
+        runner.filter() = ParticleFilter(o.grid_filter, o.seed + 1000 + i);
+        runner.filter().initialize_from_hypotheses(grid, grid_obs[i], *grid_model.field,
+                                                   std::nullopt, o.threads);
+        r.state = FilterState::global;
+        r.converged = false;
+      }
       if (r.converged && !first_converged) {
         first_converged = i;
         if (!start)
@@ -197,7 +216,14 @@ DualLocalization localize_dual(const OccupancyGrid& drawn_plan, const OccupancyG
     result.grid_corrections = runner.corrections();
   }
   result.localize_seconds += seconds_since(clock) - result.global_localization_seconds;
-  const Pose2 grid_start = start ? start->grid : result.scans[result.grid_start_scan].grid.pose;
+  // A given start the gridmap filter had to abandon says nothing about the plan either: the
+  // plan is then located like without a start.
+  if (start && !start_held) {
+    result.notes.push_back("the gridmap filter diverged from the given start before converging: "
+                           "initial_pose ignored, the plan located by registering the run");
+  }
+  const std::optional<StartPoses> given = start_held ? start : std::nullopt;
+  const Pose2 grid_start = given ? given->grid : result.scans[result.grid_start_scan].grid.pose;
 
   // ---- 2. where the run lies on the plan ----
   clock = Clock::now();
@@ -206,8 +232,8 @@ DualLocalization localize_dual(const OccupancyGrid& drawn_plan, const OccupancyG
   PlanRegistration registration;
   double scale = plan_scale.value_or(0.5 * (o.scale_range.min + o.scale_range.max));
   double scale_sigma = plan_scale ? 0.0 : 0.25 * (o.scale_range.max - o.scale_range.min);
-  if (start) {
-    registration = PlanRegistration(start->grid, start->plan, scale);
+  if (given) {
+    registration = PlanRegistration(given->grid, given->plan, scale);
   } else {
     // The endpoints of every scan the gridmap filter was sure of, as one submap.
     std::vector<std::size_t> scans;
@@ -233,9 +259,9 @@ DualLocalization localize_dual(const OccupancyGrid& drawn_plan, const OccupancyG
   }
   result.global_localization_seconds += seconds_since(clock);
   result.start.grid = grid_start;
-  result.start.plan = start ? start->plan : registration.plan_pose(grid_start);
-  const double start_sigma = start ? 0.2 : o.reinitialize_sigma;
-  const double start_heading_sigma = start ? 0.1 : o.reinitialize_heading_sigma;
+  result.start.plan = given ? given->plan : registration.plan_pose(grid_start);
+  const double start_sigma = given ? 0.2 : o.reinitialize_sigma;
+  const double start_heading_sigma = given ? 0.1 : o.reinitialize_heading_sigma;
 
   // ---- 3. the plan's scale searched by the plan filter ----
   if (!plan_scale) {
@@ -256,31 +282,59 @@ DualLocalization localize_dual(const OccupancyGrid& drawn_plan, const OccupancyG
       search_obs.push_back(make_observation(scan, o.scale_search_observation));
     FilterRunner runner(std::move(filter), search_model.model(), plan_walls, log, search_obs,
                         runner_options);
+    std::vector<std::pair<std::size_t, Pose2>> searched;
     std::tie(scale, result.plan_scale_std) =
         search_scale(runner, result.plan_start_scan,
-                     static_cast<std::size_t>(std::max(1, o.scale_search_scans)), n, result.notes);
+                     static_cast<std::size_t>(std::max(1, o.scale_search_scans)), n, result.notes,
+                     searched);
+    // The profile: which scale puts the most endpoints exactly on the plan's walls.
+    if (!searched.empty() && o.scale_profile_steps > 0) {
+      std::vector<ScanObservation> points;
+      std::vector<Pose2> poses;
+      const std::size_t count = std::min(searched.size(), std::max<std::size_t>(1, o.scale_profile_scans));
+      for (std::size_t k = 0; k < count; ++k) {
+        const auto& [scan, pose] = searched[k * searched.size() / count];
+        points.push_back(make_observation(log.scans[scan], o.plan_runner.match_observation));
+        poses.push_back(pose);
+      }
+      std::vector<const ScanObservation*> views;
+      for (const ScanObservation& p : points)
+        views.push_back(&p);
+      std::vector<double> candidates;
+      for (int k = -o.scale_profile_steps; k <= o.scale_profile_steps; ++k)
+        candidates.push_back(scale * (1.0 + o.scale_profile_range * k / o.scale_profile_steps));
+      const ScaleProfile profile = profile_scale(plan_walls, views, poses, candidates,
+                                                 o.plan_runner.match, plan_rays,
+                                                 o.plan_runner.beam_tolerance);
+      if (std::abs(profile.best / scale - 1.0) > 1e-9)
+        result.notes.push_back("the scale search gave " + std::to_string(scale) +
+                               ", the profile of matched scans " + std::to_string(profile.best));
+      scale = profile.best;
+    }
     result.plan_scale_search = scale;
     result.plan_scale_search_std = result.plan_scale_std;
     result.plan_scale_estimated = true;
-    if (start)
-      registration = PlanRegistration(start->grid, start->plan, scale);
+    if (given)
+      registration = PlanRegistration(given->grid, given->plan, scale);
     result.scale_search_seconds = seconds_since(clock);
   }
 
   // ---- 4. the plan filter tracks, checked against the gridmap filter ----
-  clock = Clock::now();
-  {
+  const auto track_plan = [&](double track_scale) {
+    result.plan_divergences = {};
     std::uint64_t seed = o.seed + 3;
     ParticleFilter filter(o.plan_filter, seed);
     filter.initialize_tracking(
-        plan_start(result.start.plan, start_sigma, start_heading_sigma, scale, 0.0), plan);
+        plan_start(result.start.plan, start_sigma, start_heading_sigma, track_scale, 0.0), plan);
     FilterRunner runner(std::move(filter), plan_model.model(), plan_walls, log, plan_obs,
                         o.plan_runner, plan_rays);
     int disagreeing = 0, unconverged = 0;
     std::size_t usable = 0;
-    LocalRegistration local(o.local_window, scale);
+    LocalRegistration local(o.local_window, track_scale);
     for (std::size_t i = result.plan_start_scan; i < n; ++i) {
       ScanRecord& record = result.scans[i];
+      record.plan_reinitialized = false;
+      record.consistent = true;
       FilterRecord& r = record.plan = runner.step(i);
       if (r.diverged)
         count_divergence(result.plan_divergences,
@@ -308,7 +362,7 @@ DualLocalization localize_dual(const OccupancyGrid& drawn_plan, const OccupancyG
           runner.filter() = ParticleFilter(o.plan_filter, ++seed);
           runner.filter().initialize_tracking(
               plan_start(expected, near ? 0.3 : o.reinitialize_sigma,
-                         near ? 0.1 : o.reinitialize_heading_sigma, scale, 0.0),
+                         near ? 0.1 : o.reinitialize_heading_sigma, track_scale, 0.0),
               plan);
           record.plan_reinitialized = true;
           disagreeing = unconverged = 0;
@@ -318,17 +372,36 @@ DualLocalization localize_dual(const OccupancyGrid& drawn_plan, const OccupancyG
       report("plan", i + 1, n, r.converged, usable);
     }
     result.plan_corrections = runner.corrections();
-  }
-  result.localize_seconds += seconds_since(clock);
+  };
 
-  // ---- 5. the scale refitted with the refined plan poses, then the pairs ----
-  clock = Clock::now();
-  if (result.plan_scale_estimated && o.refine_poses && o.refit_scale)
-    scale = refit_plan_scale(result, log, plan_walls, o.plan_runner, scale, plan_rays);
-  result.scale_search_seconds += seconds_since(clock);
+  // ---- 5. the scale refitted with the refined plan poses; tracked again when it moved ----
+  for (int pass = 1;; ++pass) {
+    clock = Clock::now();
+    track_plan(scale);
+    result.localize_seconds += seconds_since(clock);
+    if (!(result.plan_scale_estimated && o.refine_poses && o.refit_scale))
+      break;
+    clock = Clock::now();
+    const double refit = refit_plan_scale(result, log, plan_walls, o.plan_runner, scale, plan_rays);
+    result.scale_search_seconds += seconds_since(clock);
+    // A refit far from the search (too few or bad scans) is not trusted.
+    if (std::abs(refit / scale - 1.0) > 0.1) {
+      result.plan_scale_std = result.plan_scale_search_std;
+      result.notes.push_back("the scale refit went far from the search's: kept the search's");
+      break;
+    }
+    const bool moved = std::abs(refit / scale - 1.0) > o.retrack_scale_change;
+    scale = refit;
+    if (given)
+      registration = PlanRegistration(given->grid, given->plan, scale);
+    if (!moved || pass >= o.max_plan_passes)
+      break;
+    result.notes.push_back("the plan tracked again with the refitted scale");
+  }
   result.plan_scale = scale;
   clock = Clock::now();
   make_pairs(result, log, plan_walls, grid_walls, o.pairs, o.refine_poses);
+  drop_outlier_scans(result, o.outlier_scans);
   result.pairs_seconds = seconds_since(clock);
   summarize_convergence(result);
   return result;

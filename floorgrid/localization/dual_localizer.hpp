@@ -8,6 +8,7 @@
 
 #include "floorgrid/localization/beam_model.hpp"
 #include "floorgrid/localization/filter_runner.hpp"
+#include "floorgrid/localization/outlier_scans.hpp"
 #include "floorgrid/localization/likelihood_field_model.hpp"
 #include "floorgrid/localization/pair_extraction.hpp"
 #include "floorgrid/localization/particle_filter.hpp"
@@ -37,7 +38,8 @@ enum class ObservationModelKind {
 /// scans that explain almost nothing, and a lower fit to count as converged.
 ParticleFilterOptions default_plan_filter_options();
 /// The gridmap filter's defaults: no augmented-MCL injection while tracking either (along a
-/// corridor it scatters a converged cloud and reads as divergence).
+/// corridor it scatters a converged cloud and reads as divergence), and a higher fit to count
+/// as converged (the gridmap holds what the laser sees).
 ParticleFilterOptions default_grid_filter_options();
 
 /// Every setting of the dual localization (defaults in one place).
@@ -71,6 +73,8 @@ struct DualLocalizerOptions {
   /// the match towards the walls behind.
   bool plan_beam_consistency = true;
   PairExtractionOptions pairs;  ///< how endpoints become pairs
+  /// Scans whose pairs disagree with the other scans' at the same walls are dropped.
+  OutlierScanOptions outlier_scans;
   /// Pairs only from scans whose scan match succeeded on both maps (the refined poses), and
   /// never from a scan whose match is degenerate in either (a corridor, an aisle).
   bool refine_poses = true;
@@ -85,18 +89,28 @@ struct DualLocalizerOptions {
   LikelihoodFieldOptions registration_likelihood{0.25, 0.8, 0.2, 2.0, 1.0, true};
   /// Scales (world metres per plan metre) searched when the plan's scale is not given.
   ScaleRange scale_range{0.8, 1.25};
-  /// The plan filter's model during the scale search: the beam model by default. A plan lacks
-  /// the furniture the laser sees; the likelihood field, blind to what lies along a beam,
-  /// explains an endpoint on furniture best by stretching the scan onto the wall behind it and
-  /// biases the scale low, while the beam model explains a short reading by the obstacle.
-  ObservationModelKind scale_search_model = ObservationModelKind::beam;
+  /// The plan filter's model during the scale search. The likelihood field by default: on a
+  /// plan drawn wrong the beam model punishes every reading that passes a misdrawn wall and
+  /// drifts to whatever scale hides them; the likelihood field's bias (it stretches a scan to
+  /// pull furniture endpoints onto the walls behind them) is removed by the profile that
+  /// follows, which counts only endpoints exactly on walls.
+  ObservationModelKind scale_search_model = ObservationModelKind::likelihood_field;
   ObservationOptions scale_search_observation{30};  ///< beams per scan of the scale search
   /// Random walk of the scale during the search, per square root of a metre travelled.
   double scale_walk = 0.01;
   int scale_search_scans = 300;  ///< scans of the scale search after the plan filter converged
+  /// Then the scale is profiled (profile_scale) over the search's result times 1 +- this, in
+  /// scale_profile_steps steps each way, on up to scale_profile_scans of its scans.
+  double scale_profile_range = 0.1;
+  int scale_profile_steps = 20;
+  std::size_t scale_profile_scans = 60;
   /// With an unknown plan scale: refit it, with the refined plan poses of every scan used for
   /// pairs, by a joint Gauss-Newton (fit_scale), and make the pairs with that scale.
   bool refit_scale = true;
+  /// When the refit moves the scale by more than this share, the plan filter tracks again with
+  /// the refitted scale (and the scale is refitted on that), at most max_plan_passes passes.
+  double retrack_scale_change = 0.002;
+  int max_plan_passes = 2;
   int max_global_scans = 600;  ///< a gridmap filter not converged by then: global localization failed
 
   // ---- the dual check: the two filters must agree through the plan's registration ----

@@ -1,7 +1,11 @@
 #include "floorgrid/localization/dual_pairs.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <map>
 #include <optional>
+
+
 
 namespace floorgrid {
 
@@ -76,6 +80,18 @@ void make_pairs(DualLocalization& result, const RobotLog& log, const WallField& 
     record.pairs = pairs.size() - before;
   }
   result.pairs = pairs.pairs();
+}
+
+void drop_outlier_scans(DualLocalization& result, const OutlierScanOptions& options) {
+  std::vector<std::size_t> counts;
+  counts.reserve(result.scans.size());
+  for (const ScanRecord& r : result.scans)
+    counts.push_back(r.pairs);
+  const std::size_t before = static_cast<std::size_t>(result.pairs.size());
+  reject_outlier_scans(result.pairs, counts, options);
+  for (std::size_t k = 0; k < counts.size(); ++k)
+    result.scans[k].pairs = counts[k];
+  result.rejections.outlier_scan += before - static_cast<std::size_t>(result.pairs.size());
 }
 
 void summarize_convergence(DualLocalization& result) {

@@ -20,6 +20,10 @@ double refit_plan_scale(DualLocalization& result, const RobotLog& log, const Wal
 void make_pairs(DualLocalization& result, const RobotLog& log, const WallField& plan_walls,
                 const WallField& grid_walls, const PairExtractionOptions& options, bool refine);
 
+/// Drops the pairs of scans that disagree with the other scans' (reject_outlier_scans):
+/// updates result.pairs, the records' pair counts and the `outlier_scan` rejections.
+void drop_outlier_scans(DualLocalization& result, const OutlierScanOptions& options);
+
 /// result.converged_fraction and result.converged_periods from the records.
 void summarize_convergence(DualLocalization& result);
 

@@ -16,6 +16,7 @@ PairRejections& PairRejections::operator+=(const PairRejections& o) {
   degenerate += o.degenerate;
   unmatched += o.unmatched;
   inconsistent += o.inconsistent;
+  outlier_scan += o.outlier_scan;
   return *this;
 }
 
@@ -24,12 +25,13 @@ std::map<std::string, std::size_t> PairRejections::by_reason() const {
           {"off_plan_wall", off_plan_wall}, {"off_grid_wall", off_grid_wall},
           {"subsampled", subsampled},       {"per_scan_cap", per_scan_cap},
           {"too_far", too_far},             {"degenerate", degenerate},
-          {"unmatched", unmatched},         {"inconsistent", inconsistent}};
+          {"unmatched", unmatched},         {"inconsistent", inconsistent},
+          {"outlier_scan", outlier_scan}};
 }
 
 std::size_t PairRejections::total() const {
   return not_converged + no_return + off_plan_wall + off_grid_wall + subsampled + per_scan_cap +
-         too_far + degenerate + unmatched + inconsistent;
+         too_far + degenerate + unmatched + inconsistent + outlier_scan;
 }
 
 void reject_scan(const LaserScan& scan, PairRejections& rejections) {

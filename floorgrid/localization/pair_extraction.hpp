@@ -40,6 +40,9 @@ struct PairRejections {
   /// Beams of scans where the plan pose disagreed with the gridmap pose through the plan's
   /// registration (one of the filters is wrong).
   std::size_t inconsistent = 0;
+  /// Pairs of scans whose pairs disagreed with the other scans' at the same walls (counted in
+  /// pairs, after they were made).
+  std::size_t outlier_scan = 0;
 
   /// Adds another count.
   PairRejections& operator+=(const PairRejections& other);

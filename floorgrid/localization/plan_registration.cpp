@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <numbers>
 #include <cstdint>
 #include <unordered_set>
 
@@ -120,23 +122,62 @@ PlanRegistrationResult register_on_plan(const OccupancyGrid& plan, const Observa
       cloud.end_y[i] = static_cast<float>(cloud.end_y[i] / scale);
     }
   }
+  // Coarse: the lattice on a thinned cloud.
+  ScanObservation coarse;
+  const std::size_t keep = std::min(cloud.size(), std::max<std::size_t>(1, options.coarse_points));
+  for (std::size_t k = 0; k < keep; ++k) {
+    const std::size_t j = k * cloud.size() / keep;
+    coarse.angle.push_back(cloud.angle[j]);
+    coarse.range.push_back(cloud.range[j]);
+    coarse.end_x.push_back(cloud.end_x[j]);
+    coarse.end_y.push_back(cloud.end_y[j]);
+    coarse.beam.push_back(cloud.beam[j]);
+  }
   const FreeSpaceSampler free_space(plan);
   Random random(1);
   const HypothesisSeeding seeds =
-      seed_best_hypotheses(free_space, cloud, model, options.seeding, scales, random, threads);
+      seed_best_hypotheses(free_space, coarse, model, options.seeding, scales, random, threads);
+  // Fine: each kept hypothesis and its half-step neighbours, scored with every point.
+  const double step = seeds.position_step;
+  const double heading_step = 2.0 * std::numbers::pi / std::max(1, options.seeding.headings);
+  const double scale_step =
+      scales ? (scales->max - scales->min) / std::max(1, options.seeding.scales) : 0.0;
+  ParticleSet candidates;
+  const bool with_scale = seeds.particles.has_scale();
+  for (std::size_t i = 0; i < seeds.particles.size(); ++i) {
+    for (int dx = -1; dx <= 1; ++dx)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dt = -1; dt <= 1; ++dt)
+          for (int ds = with_scale ? -1 : 0; ds <= (with_scale ? 1 : 0); ++ds) {
+            candidates.x.push_back(seeds.particles.x[i] + 0.5 * dx * step);
+            candidates.y.push_back(seeds.particles.y[i] + 0.5 * dy * step);
+            candidates.theta.push_back(normalize_angle(seeds.particles.theta[i] + 0.5 * dt * heading_step));
+            if (with_scale)
+              candidates.scale.push_back(std::max(1e-3, seeds.particles.scale[i] + 0.5 * ds * scale_step));
+          }
+  }
+  std::vector<double> score;
+  model.log_likelihood(cloud, candidates, score, threads);
   PlanRegistrationResult result;
-  result.hypotheses = seeds.scored;
+  result.hypotheses = seeds.scored + candidates.size();
   result.points = cloud.size();
-  const ParticleSet& best = seeds.particles;
-  const double best_scale = best.has_scale() ? best.scale[0] : scale;
-  result.registration = PlanRegistration(submap_origin, best.pose(0), best_scale);
-  result.log_likelihood = seeds.log_likelihood.front();
-  for (std::size_t i = 1; i < best.size(); ++i) {
-    const double distance = std::hypot(best.x[i] - best.x[0], best.y[i] - best.y[0]);
-    if (distance > 2.0 || std::abs(normalize_angle(best.theta[i] - best.theta[0])) > 0.5) {
-      result.runner_up_log_likelihood = seeds.log_likelihood[i];
-      break;
-    }
+  if (candidates.size() == 0)
+    throw InputError("the plan has no free space to locate the run in", {}, 0, "floorplan");
+  std::size_t best = 0;
+  for (std::size_t i = 1; i < score.size(); ++i)
+    if (score[i] > score[best])
+      best = i;
+  const double best_scale = with_scale ? candidates.scale[best] : scale;
+  result.registration = PlanRegistration(submap_origin, candidates.pose(best), best_scale);
+  result.log_likelihood = score[best];
+  result.runner_up_log_likelihood = -std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < score.size(); ++i) {
+    const double distance = std::hypot(candidates.x[i] - candidates.x[best],
+                                       candidates.y[i] - candidates.y[best]);
+    if ((distance > 2.0 ||
+         std::abs(normalize_angle(candidates.theta[i] - candidates.theta[best])) > 0.5) &&
+        score[i] > result.runner_up_log_likelihood)
+      result.runner_up_log_likelihood = score[i];
   }
   return result;
 }

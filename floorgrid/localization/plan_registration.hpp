@@ -16,8 +16,8 @@ namespace floorgrid {
 
 /// How the laser endpoints of many scans become one point cloud (a submap).
 struct SubmapOptions {
-  double bin = 0.15;              ///< metres: one point per bin of this size (> 0)
-  std::size_t max_points = 4000;  ///< at most this many points, evenly thinned (>= 1)
+  double bin = 0.2;               ///< metres: one point per bin of this size (> 0)
+  std::size_t max_points = 6000;  ///< at most this many points, evenly thinned (>= 1)
   double max_range = 15.0;        ///< metres: longer readings are left out
 };
 
@@ -30,8 +30,14 @@ ScanObservation build_submap(const RobotLog& log, std::span<const std::size_t> s
 
 /// How a run is located on a plan.
 struct PlanRegistrationOptions {
-  HypothesisSeedingOptions seeding{.position_step = 0.25, .headings = 72, .scales = 12,
-                                   .keep = 64, .max_hypotheses = 8'000'000, .jitter = false};
+  /// The lattice: 0.25 m, 7.5 degrees, ten scales; coarse enough to be quick, fine enough for
+  /// the plan filter (started with a metre and 0.2 rad of spread) to settle from.
+  HypothesisSeedingOptions seeding{.position_step = 0.25, .headings = 48, .scales = 10,
+                                   .keep = 256, .max_hypotheses = 6'000'000, .jitter = false};
+  /// The lattice is scored with this many of the submap's points (evenly thinned); its best
+  /// `seeding.keep` are then rescored with every point, each refined over a 3 x 3 x 3 x 3
+  /// sub-lattice of half steps, and the best wins.
+  std::size_t coarse_points = 1500;
 };
 
 /// Where a run lies on a plan: the plan pose and scale of one robot pose of the run, so that
@@ -104,7 +110,8 @@ struct PlanRegistrationResult {
 
 /// Global localization of a submap on the plan: every pose of a lattice over the plan's free
 /// space x headings (x scales over `scales` when the plan's scale is unknown, else `scale`) is
-/// scored with `model` (the plan's likelihood field) and the best wins. A submap spanning a
+/// scored with `model` (the plan's likelihood field) on a thinned submap, and the best few are
+/// rescored and refined with the whole submap. A submap spanning a
 /// long stretch of the run is far less ambiguous than one scan (a corridor of identical doors
 /// has one place where a whole tour fits). O(hypotheses x points) in `threads` threads.
 PlanRegistrationResult register_on_plan(const OccupancyGrid& plan, const ObservationModel& model,

@@ -87,6 +87,7 @@ Linearization linearize(const WallField& walls, const ScanObservation& scan, con
   Linearization l;
   const Eigen::Matrix2d R = pose.rotation();
   const Eigen::Vector2d t = pose.translation();
+  const Eigen::Vector2d laser = t + u * (R * scan.laser_origin);
   for (std::size_t j = 0; j < scan.size(); ++j) {
     const Eigen::Vector2d v = R * Eigen::Vector2d(scan.end_x[j], scan.end_y[j]);
     const Eigen::Vector2d p = t + u * v;
@@ -97,8 +98,11 @@ Linearization linearize(const WallField& walls, const ScanObservation& scan, con
     const double distance = err.norm();
     if (distance > gate)
       continue;
-    const Eigen::Vector2d dp_dtheta(-u * v.y(), u * v.x());
     const Eigen::Vector2d n = wall->normal.cast<double>();
+    // A one-sided wall (a face of a wall drawn as two lines) is seen from its room side only.
+    if (wall->one_sided && (laser - wall->point.cast<double>()).dot(n) <= 0.0)
+      continue;
+    const Eigen::Vector2d dp_dtheta(-u * v.y(), u * v.x());
     if (n.squaredNorm() > 0.5) {
       const double r = n.dot(err);
       add_row(l, {n.x(), n.y(), n.dot(dp_dtheta)}, n.dot(v), r, robust_weight(r, o.robust_scale));
@@ -212,6 +216,35 @@ ScanMatch match_scan(const WallField& walls, const ScanObservation& scan, const 
       static_cast<double>(m.inliers) < options.min_inlier_fraction * static_cast<double>(scan.size()))
     m.failure = ScanMatchFailure::too_few_inliers;
   return m;
+}
+
+ScaleProfile profile_scale(const WallField& walls, std::span<const ScanObservation* const> scans,
+                           std::span<const Pose2> poses, const std::vector<double>& candidates,
+                           const ScanMatchOptions& options, const GridRayCaster* caster,
+                           double tolerance) {
+  validate(options);
+  if (scans.size() != poses.size())
+    throw InputError("needs one pose per scan", {}, 0, "scale_profile.poses");
+  ScaleProfile profile;
+  profile.scales = candidates;
+  std::size_t most = 0;
+  for (const double scale : candidates) {
+    if (!(scale > 0.0))
+      throw InputError("candidate scales must be > 0", {}, 0, "scale_profile.candidates");
+    std::size_t inliers = 0;
+    for (std::size_t i = 0; i < scans.size(); ++i) {
+      const ScanMatch m = caster ? match_scan(walls, *scans[i], poses[i], scale, options, *caster,
+                                              tolerance)
+                                 : match_scan(walls, *scans[i], poses[i], scale, options);
+      inliers += m.inliers;
+    }
+    profile.inliers.push_back(inliers);
+    if (inliers > most) {
+      most = inliers;
+      profile.best = scale;
+    }
+  }
+  return profile;
 }
 
 ScaleFit fit_scale(const WallField& walls, std::span<const ScanObservation* const> scans,

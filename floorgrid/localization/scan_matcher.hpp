@@ -87,6 +87,23 @@ ScanMatch match_scan(const WallField& walls, const ScanObservation& scan, const 
                      double scale, const ScanMatchOptions& options, const GridRayCaster& caster,
                      double tolerance);
 
+/// How well each candidate scale lets scans land on the walls.
+struct ScaleProfile {
+  double best = 1.0;                   ///< the candidate with the most inliers
+  std::vector<double> scales;          ///< the candidates
+  std::vector<std::size_t> inliers;    ///< inliers summed over the scans, per candidate
+};
+
+/// For each candidate scale, every scan is matched from its pose (match_scan; with `caster`,
+/// by its beams consistent with it) and its inliers counted: the scale at which the most
+/// endpoints lie on the walls wins. Inliers are a tight count (inlier_distance), so endpoints
+/// on furniture or on walls drawn elsewhere count for no scale, unlike in a likelihood,
+/// where a stretched scan pulls furniture endpoints onto the walls behind them.
+ScaleProfile profile_scale(const WallField& walls, std::span<const ScanObservation* const> scans,
+                           std::span<const Pose2> poses, const std::vector<double>& candidates,
+                           const ScanMatchOptions& options = {},
+                           const GridRayCaster* caster = nullptr, double tolerance = 0.5);
+
 /// A plan's scale fitted jointly with the poses of many scans.
 struct ScaleFit {
   double scale = 1.0;         ///< world metres per map metre

@@ -63,7 +63,8 @@ bool near_occupied(const OccupancyGrid& grid, int ix, int iy) {
 
 }  // namespace
 
-WallField::WallField(const OccupancyGrid& grid, const WallFieldOptions& options)
+WallField::WallField(const OccupancyGrid& grid, const WallFieldOptions& options,
+                     const std::vector<std::uint8_t>* rooms)
     : geometry_(grid.geometry()) {
   validate(options);
   const int w = geometry_.width, h = geometry_.height;
@@ -78,11 +79,14 @@ WallField::WallField(const OccupancyGrid& grid, const WallFieldOptions& options)
           {geometry_.cell_center(ix, iy).cast<float>(), wall_normal(grid, ix, iy, options)});
     }
   }
+  if (rooms)
+    orient(*rooms);
   build_lookup(wall_of_cell, options.max_distance);
 }
 
 WallField::WallField(const VectorFloorplan& plan, const GridGeometry& geometry,
-                     const WallFieldOptions& options, const OccupancyGrid* visible)
+                     const WallFieldOptions& options, const OccupancyGrid* visible,
+                     const std::vector<std::uint8_t>* rooms)
     : geometry_(geometry) {
   validate(options);
   std::vector<std::int32_t> wall_of_cell(geometry_.size(), -1);
@@ -136,7 +140,34 @@ WallField::WallField(const VectorFloorplan& plan, const GridGeometry& geometry,
                   arc.point_at(arc.start_angle + sweep * (k + 1) / pieces));
     }
   }
+  if (rooms)
+    orient(*rooms);
   build_lookup(wall_of_cell, options.max_distance);
+}
+
+void WallField::orient(const std::vector<std::uint8_t>& rooms) {
+  if (rooms.size() != geometry_.size())
+    return;
+  // Probe a few cells out on each side of the wall along its normal.
+  const auto room_at = [&](const Eigen::Vector2d& p) {
+    int ix = 0, iy = 0;
+    return geometry_.cell_of(p, ix, iy) && rooms[static_cast<std::size_t>(iy) * geometry_.width + ix];
+  };
+  for (WallPoint& w : walls_) {
+    if (w.normal.squaredNorm() < 0.5)
+      continue;
+    bool plus = false, minus = false;
+    for (const double k : {1.5, 2.5, 3.5}) {
+      const Eigen::Vector2d step = w.normal.cast<double>() * (k * geometry_.resolution);
+      plus = plus || room_at(w.point.cast<double>() + step);
+      minus = minus || room_at(w.point.cast<double>() - step);
+    }
+    if (plus != minus) {
+      w.one_sided = true;
+      if (minus)
+        w.normal = -w.normal;
+    }
+  }
 }
 
 double WallField::distance(const Eigen::Vector2d& point_in_map) const {

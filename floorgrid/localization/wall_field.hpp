@@ -15,6 +15,9 @@ struct WallPoint {
   /// Unit normal of the wall there, or zero where the wall has no clear direction (a corner,
   /// a post): such points are matched point to point.
   Eigen::Vector2f normal;
+  /// Whether the wall faces one side only (the face of a wall drawn as two lines): `normal`
+  /// then points to that side, and the wall can only be seen from there.
+  bool one_sided = false;
 };
 
 /// Settings of a WallField.
@@ -42,7 +45,10 @@ class WallField {
   /// An empty field (every lookup finds nothing).
   WallField() = default;
   /// The field of `grid`'s occupied cells. Throws InputError on bad options.
-  explicit WallField(const OccupancyGrid& grid, const WallFieldOptions& options = {});
+  /// With `rooms` (per cell of the grid, 1 in a room: VisibleWalls::room), a wall with free room
+  /// space on one side only is one-sided, facing it.
+  explicit WallField(const OccupancyGrid& grid, const WallFieldOptions& options = {},
+                     const std::vector<std::uint8_t>* rooms = nullptr);
   /// The field of a vector plan's exact walls over the cells of `geometry`: each cell a wall
   /// passes through holds the wall's point nearest the cell centre and the wall's own normal
   /// (arcs as chords of at most a tenth of a cell's deviation), so a match is not limited by
@@ -50,7 +56,8 @@ class WallField {
   /// With `visible` (a grid of the same geometry), only the walls passing through or next to
   /// one of its occupied cells count (see visible_walls).
   WallField(const VectorFloorplan& plan, const GridGeometry& geometry,
-            const WallFieldOptions& options = {}, const OccupancyGrid* visible = nullptr);
+            const WallFieldOptions& options = {}, const OccupancyGrid* visible = nullptr,
+            const std::vector<std::uint8_t>* rooms = nullptr);
 
   /// The nearest wall point to `point_in_map` (the one nearest the centre of the cell holding
   /// it), or null when the point is off the grid or farther than max_distance from every wall.
@@ -75,6 +82,8 @@ class WallField {
  private:
   // Fills nearest_ from the cells holding a wall (wall_of_cell: index into walls_, or -1).
   void build_lookup(const std::vector<std::int32_t>& wall_of_cell, double max_distance);
+  // Makes the walls with room space on one side only one-sided (see the constructors).
+  void orient(const std::vector<std::uint8_t>& rooms);
 
   GridGeometry geometry_;
   std::vector<WallPoint> walls_;

@@ -102,6 +102,7 @@ VisibleWalls visible_walls(const OccupancyGrid& plan, const VisibleWallsOptions&
       flood(w, h, roomy, [&](std::size_t i) { return free_cell[i] && !outside[i]; });
   for (std::size_t i = 0; i < n; ++i)
     result.room_cells += room[i];
+  result.room = room;
   if (result.room_cells == 0)
     return result;
   const cv::Mat to_room = distance_to(w, h, room);

@@ -1,5 +1,8 @@
 #pragma once
 
+#include <cstdint>
+#include <vector>
+
 #include "floorgrid/maps/occupancy_grid.hpp"
 
 namespace floorgrid {
@@ -22,6 +25,7 @@ struct VisibleWalls {
   std::size_t walls = 0;           ///< occupied cells of the plan
   std::size_t hidden = 0;          ///< of which unseen (now unknown)
   std::size_t room_cells = 0;      ///< free cells a robot inside can reach
+  std::vector<std::uint8_t> room;  ///< per cell (row-major from the bottom): 1 in a room
   bool applied = false;            ///< false when no inside was found (the plan is unchanged)
 };
 

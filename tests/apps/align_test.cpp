@@ -1,0 +1,154 @@
+// `floorgrid align` and `floorgrid pairs` end to end on simulated buildings, against the
+// simulator's exact truth: from the noisy odometry in the log, with the plan's scale unknown.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "floorgrid/io/pairs_csv.hpp"
+#include "floorgrid/io/truth_json.hpp"
+#include "tests/support/test_data.hpp"
+
+namespace floorgrid {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using test::run_floorgrid;
+using test::TempDir;
+
+std::string quoted(const fs::path& p) { return "'" + p.string() + "'"; }
+
+json read_json(const fs::path& path) {
+  std::ifstream in(path);
+  return json::parse(in);
+}
+
+/// Simulates `preset` and aligns it; returns metrics.json.
+json simulate_and_align(const std::string& preset, int seed, const TempDir& dir) {
+  const auto sim = run_floorgrid("simulate --preset " + preset + " --seed " +
+                                 std::to_string(seed) + " --out " + quoted(dir / "data"));
+  EXPECT_EQ(sim.status, 0) << sim.err;
+  const auto run = run_floorgrid("align " + quoted(dir / "data") + " --out " + quoted(dir / "out"));
+  EXPECT_EQ(run.status, 0) << run.out << run.err;
+  return read_json(dir / "out" / "metrics.json");
+}
+
+/// SPEC's `plan_scale` (world metres per plan metre) of a simulated dataset.
+double true_plan_scale(const TempDir& dir) {
+  return read_json(dir / "data" / "truth.json")["plan"]["plan_scale"].get<double>();
+}
+
+TEST(AlignCommand, OfficeGivesAccuratePairsAndModelsAndEveryContractKey) {
+  TempDir dir;
+  const json m = simulate_and_align("office", 1, dir);
+  // metrics.json: SPEC's keys (a contract).
+  for (const char* reason : {"not_converged", "no_return", "off_plan_wall", "off_grid_wall",
+                             "subsampled", "per_scan_cap"}) {
+    EXPECT_TRUE(m["pairs"]["rejected"].contains(reason)) << reason;
+  }
+  for (const char* key : {"count", "converged_fraction", "error_median_m"})
+    EXPECT_TRUE(m["pairs"].contains(key)) << key;
+  EXPECT_EQ(m["domain"]["kind"], "warp");
+  EXPECT_GT(m["domain"]["points"].get<int>(), 1000);
+  for (const char* key : {"load", "global_localization", "scale_search", "localize", "pairs", "fit",
+                          "evaluate", "write"}) {
+    EXPECT_TRUE(m["timings_s"].contains(key)) << key;
+  }
+  for (const char* model : {"gt", "gp", "gpgt", "ct", "dt", "tps", "lc", "auto"}) {
+    const json& j = m["models"][model];
+    for (const char* key : {"mean_error_m", "median_error_m", "p95_error_m", "fit_seconds",
+                            "cv_error_m"}) {
+      EXPECT_TRUE(j.contains(key) && j[key].is_number()) << model << "." << key;
+    }
+    for (const char* key : {"min_m", "mean_m", "max_m"})
+      EXPECT_TRUE(j["back_and_forth"][key].is_number()) << model << ".back_and_forth." << key;
+    EXPECT_TRUE(fs::exists(dir / "out" / ("model-" + std::string(model) + ".json"))) << model;
+    EXPECT_TRUE(fs::exists(dir / "out" / "overlays" / ("overlay-" + std::string(model) + ".png")));
+  }
+  EXPECT_TRUE(fs::exists(dir / "out" / "model.json"));
+
+  // Accuracy against the exact warp (issue: pairs median <= 5 cm, gt <= 10 cm).
+  EXPECT_LE(m["pairs"]["error_median_m"].get<double>(), 0.05);
+  EXPECT_GE(m["pairs"]["converged_fraction"].get<double>(), 0.9);
+  EXPECT_LE(m["models"]["gt"]["mean_error_m"].get<double>(), 0.10);
+  EXPECT_NEAR(m["plan_scale"].get<double>(), true_plan_scale(dir), 0.002);
+  // The pairs file holds the pairs counted.
+  const ReferencePairs pairs = io::read_pairs_csv(dir / "out" / "pairs.csv");
+  EXPECT_EQ(pairs.size(), m["pairs"]["count"].get<Eigen::Index>());
+  // The model chosen by auto maps points; its file loads.
+  const auto map = run_floorgrid("map --model " + quoted(dir / "out" / "model.json") + " 10,5");
+  EXPECT_EQ(map.status, 0) << map.err;
+}
+
+TEST(AlignCommand, BentOfficeIsFittedByTheGaussianProcesses) {
+  TempDir dir;
+  const json m = simulate_and_align("bent-office", 1, dir);
+  EXPECT_LE(m["pairs"]["error_median_m"].get<double>(), 0.08);
+  const double gp = m["models"]["gp"]["mean_error_m"].get<double>();
+  const double gpgt = m["models"]["gpgt"]["mean_error_m"].get<double>();
+  EXPECT_LE(std::min(gp, gpgt), 0.15);
+  // A 1 m bend: a global similarity cannot follow it.
+  EXPECT_GT(m["models"]["gt"]["mean_error_m"].get<double>(), std::min(gp, gpgt));
+}
+
+TEST(AlignCommand, WarehouseAislesMakeNoPairsAlongThem) {
+  TempDir dir;
+  const json m = simulate_and_align("warehouse", 1, dir);
+  EXPECT_LE(m["pairs"]["error_median_m"].get<double>(), 0.05);
+  EXPECT_LE(m["models"]["gt"]["mean_error_m"].get<double>(), 0.10);
+  // Scans that see only the racks of an aisle cannot place the robot along it.
+  EXPECT_GT(m["pairs"]["rejected"]["degenerate"].get<int>(), 0);
+}
+
+TEST(PairsCommand, OfficeInchesFindsTheUnitMixUp) {
+  TempDir dir;
+  const auto sim = run_floorgrid("simulate --preset office-inches --seed 1 --out " +
+                                 quoted(dir / "data"));
+  ASSERT_EQ(sim.status, 0) << sim.err;
+  const auto run =
+      run_floorgrid("pairs " + quoted(dir / "data") + " --out " + quoted(dir / "pairs.csv"));
+  ASSERT_EQ(run.status, 0) << run.err;
+  // The DXF header says mm, the drawing is in inches: the reader warns and reads inches, and
+  // the run then finds the plan's remaining scale error.
+  EXPECT_NE(run.err.find("mm"), std::string::npos) << run.err;
+  EXPECT_NE(run.out.find("plan scale"), std::string::npos);
+  const PlanTruth truth = io::read_plan_truth(dir / "data" / "truth.json");
+  const ReferencePairs pairs = io::read_pairs_csv(dir / "pairs.csv");
+  ASSERT_GT(pairs.size(), 1000);
+  std::vector<double> errors;
+  for (Eigen::Index i = 0; i < pairs.size(); ++i)
+    errors.push_back(
+        (truth.plan_to_grid(pairs.points_in_plan.col(i)) - pairs.points_in_grid.col(i)).norm());
+  std::nth_element(errors.begin(), errors.begin() + static_cast<long>(errors.size() / 2),
+                   errors.end());
+  EXPECT_LE(errors[errors.size() / 2], 0.05);
+}
+
+TEST(AlignCommand, BadInputExitsWithTwoAndWritesNothing) {
+  TempDir dir;
+  const auto missing = run_floorgrid("align " + quoted(dir / "nothing") + " --out " +
+                                     quoted(dir / "out"));
+  EXPECT_EQ(missing.status, 2);
+  EXPECT_NE(missing.err.find("nothing"), std::string::npos) << missing.err;
+  EXPECT_FALSE(fs::exists(dir / "out" / "metrics.json"));
+  // A dataset without a log cannot make pairs: the message names the key.
+  const auto sim = run_floorgrid("simulate --preset office --seed 2 --out " + quoted(dir / "data"));
+  ASSERT_EQ(sim.status, 0) << sim.err;
+  std::string manifest = test::read_file(dir / "data" / "dataset.yaml");
+  manifest.erase(manifest.find("log:"), manifest.find('\n', manifest.find("log:")) -
+                                           manifest.find("log:") + 1);
+  test::write_file(dir / "data" / "dataset.yaml", manifest);
+  const auto no_log = run_floorgrid("pairs " + quoted(dir / "data") + " --out " +
+                                    quoted(dir / "pairs.csv"));
+  EXPECT_EQ(no_log.status, 2);
+  EXPECT_NE(no_log.err.find("log"), std::string::npos) << no_log.err;
+  EXPECT_FALSE(fs::exists(dir / "pairs.csv"));
+  const auto bad_cv = run_floorgrid("align " + quoted(dir / "data") + " --out " +
+                                    quoted(dir / "out") + " --cv 1");
+  EXPECT_EQ(bad_cv.status, 2);
+}
+
+}  // namespace
+}  // namespace floorgrid
