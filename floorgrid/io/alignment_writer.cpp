@@ -91,6 +91,7 @@ json metrics_json(const Alignment& a, const std::string& dataset, const Alignmen
   j["plan_scale_estimated"] = l.plan_scale_estimated;
   j["localization"] = {
       {"grid_start_scan", l.grid_start_scan},
+      {"longest_gap_scans", l.longest_gap},
       {"plan_start_scan", l.plan_start_scan},
       {"start_plan", {l.start.plan.x, l.start.plan.y, l.start.plan.theta}},
       {"start_grid", {l.start.grid.x, l.start.grid.y, l.start.grid.theta}},

@@ -214,8 +214,10 @@ DualLocalization localize_dual(const OccupancyGrid& drawn_plan, const OccupancyG
       throw InputError("the gridmap filter never converged", {}, 0, "gridmap");
     result.grid_start_scan = *first_converged;
     result.grid_corrections = runner.corrections();
+    result.tracking_evaluations += runner.evaluations();
   }
-  result.localize_seconds += seconds_since(clock) - result.global_localization_seconds;
+  result.grid_seconds = seconds_since(clock);
+  result.localize_seconds += result.grid_seconds - result.global_localization_seconds;
   // A given start the gridmap filter had to abandon says nothing about the plan either: the
   // plan is then located like without a start.
   if (start && !start_held) {
@@ -372,6 +374,7 @@ DualLocalization localize_dual(const OccupancyGrid& drawn_plan, const OccupancyG
       report("plan", i + 1, n, r.converged, usable);
     }
     result.plan_corrections = runner.corrections();
+    result.tracking_evaluations += runner.evaluations();
   };
 
   // ---- 5. the scale refitted with the refined plan poses; tracked again when it moved ----

@@ -192,9 +192,12 @@ struct DualLocalization {
   DivergenceCount grid_divergences;  ///< the gridmap filter's
   std::size_t plan_corrections = 0;  ///< improved-proposal corrections of the plan filter
   std::size_t grid_corrections = 0;  ///< the same for the gridmap filter
+  /// Particle-beam evaluations of the tracking passes' measurement updates (both filters).
+  std::size_t tracking_evaluations = 0;
   double global_localization_seconds = 0.0;  ///< wall clock
   double scale_search_seconds = 0.0;         ///< wall clock (search and refit)
   double localize_seconds = 0.0;             ///< wall clock of the tracking passes
+  double grid_seconds = 0.0;                 ///< of which the gridmap filter's pass (global included)
   double pairs_seconds = 0.0;                ///< of pair extraction
   std::vector<std::string> notes;            ///< what happened, in words
 };

@@ -14,14 +14,14 @@ ScanMatch match_with(const WallField& walls, const ScanObservation& points, cons
                 : match_scan(walls, points, pose, scale, options);
 }
 
-bool apply_proposal(ParticleFilter& filter, const WallField& walls, const ScanObservation& points,
-                    const ScanMatchOptions& options, const GridRayCaster* caster,
-                    double tolerance) {
+ScanMatch apply_proposal(ParticleFilter& filter, const WallField& walls,
+                         const ScanObservation& points, const ScanMatchOptions& options,
+                         const GridRayCaster* caster, double tolerance) {
   const PoseEstimate predicted = estimate_pose(filter.particles());
   const ScanMatch m =
       match_with(walls, points, predicted.pose, predicted.scale, options, caster, tolerance);
   if (!m.ok() && m.failure != ScanMatchFailure::degenerate)
-    return false;
+    return m;
   Pose2 to = m.pose;
   if (!m.ok()) {
     // Along a corridor the match only drifted: the cloud keeps its own position there.
@@ -31,7 +31,7 @@ bool apply_proposal(ParticleFilter& filter, const WallField& walls, const ScanOb
     to.y = predicted.pose.y + step.y();
   }
   filter.shift(predicted.pose, to);
-  return true;
+  return m;
 }
 
 FilterRunner::FilterRunner(ParticleFilter filter, const ObservationModel& model,
@@ -61,20 +61,22 @@ FilterRecord FilterRunner::step(std::size_t i) {
   FilterRecord record;
   if (!filter_.initialized())
     return record;
+  std::optional<ScanMatch> proposal;  // the improved proposal's match of this scan
   if (update) {
     moved_ = turned_ = 0.0;
-    std::optional<ScanObservation> points;
     const bool tracking = filter_.converged() && filter_.state() == FilterState::tracking;
     FilterStatus status;
     if (options_.improved_proposal && tracking) {
       filter_.predict(motion);
-      points = make_observation(log_.scans[i], options_.match_observation);
-      corrections_ += apply_proposal(filter_, walls_, *points, options_.match, caster_,
-                                     options_.beam_tolerance);
+      const ScanObservation points = make_observation(log_.scans[i], options_.match_observation);
+      proposal = apply_proposal(filter_, walls_, points, options_.match, caster_,
+                                options_.beam_tolerance);
+      corrections_ += proposal->ok() || proposal->failure == ScanMatchFailure::degenerate;
       status = filter_.step(OdometryMotion{}, observations_[i], model_, options_.threads);
     } else {
       status = filter_.step(motion, observations_[i], model_, options_.threads);
     }
+    evaluations_ += filter_.particles().size() * observations_[i].size();
     record.updated = true;
     record.diverged = status.state == FilterState::diverged;
   } else {
@@ -88,7 +90,11 @@ FilterRecord FilterRunner::step(std::size_t i) {
   record.fit = status.mean_beam_likelihood;
   const PoseEstimate now = estimate_pose(filter_.particles());
   record.pose = now.pose;
-  if (options_.refine && record.converged) {
+  if (options_.refine && record.converged && proposal) {
+    // The proposal matched this very scan: its pose is the refined one.
+    record.match = *proposal;
+    record.matched = true;
+  } else if (options_.refine && record.converged) {
     const ScanObservation points = make_observation(log_.scans[i], options_.match_observation);
     record.match = match_with(walls_, points, now.pose, now.scale, options_.match, caster_,
                               options_.beam_tolerance);

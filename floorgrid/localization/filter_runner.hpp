@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 #include "floorgrid/localization/particle_filter.hpp"
@@ -73,6 +74,8 @@ class FilterRunner {
   ParticleFilter& filter() { return filter_; }
   /// Improved-proposal corrections applied so far.
   std::size_t corrections() const { return corrections_; }
+  /// Particle-beam evaluations of the measurement updates so far (particles x beams).
+  std::size_t evaluations() const { return evaluations_; }
 
  private:
   ParticleFilter filter_;
@@ -85,15 +88,16 @@ class FilterRunner {
   std::optional<std::size_t> last_;  // the last scan stepped
   double moved_ = 0.0, turned_ = 0.0;  // odometry since the last update
   std::size_t corrections_ = 0;
+  std::size_t evaluations_ = 0;
 };
 
 /// Moves the cloud of a converged, tracking filter onto the pose `match_scan` finds from the
 /// cloud's mean (the improved proposal's correction; along a degenerate direction the cloud
-/// keeps its own position). Returns whether it moved. With `caster`, matches the beams
-/// consistent with it (within `tolerance`).
-bool apply_proposal(ParticleFilter& filter, const WallField& walls, const ScanObservation& points,
-                    const ScanMatchOptions& options, const GridRayCaster* caster = nullptr,
-                    double tolerance = 0.5);
+/// keeps its own position), when the match is accepted or only degenerate. Returns the match.
+/// With `caster`, matches the beams consistent with it (within `tolerance`).
+ScanMatch apply_proposal(ParticleFilter& filter, const WallField& walls,
+                         const ScanObservation& points, const ScanMatchOptions& options,
+                         const GridRayCaster* caster = nullptr, double tolerance = 0.5);
 
 /// match_scan, by the beams consistent with `caster` when one is given.
 ScanMatch match_with(const WallField& walls, const ScanObservation& points, const Pose2& pose,
