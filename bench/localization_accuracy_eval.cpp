@@ -16,9 +16,9 @@
 #include <nlohmann/json.hpp>
 
 #include "floorgrid/evaluation/overlay.hpp"
+#include "floorgrid/io/carmen_writer.hpp"
 #include "floorgrid/io/dataset_loader.hpp"
 #include "floorgrid/io/image_io.hpp"
-#include "floorgrid/io/carmen_writer.hpp"
 #include "floorgrid/localization/dual_localizer.hpp"
 
 using namespace floorgrid;
@@ -37,7 +37,9 @@ struct Stats {
   }
 };
 
-double wrap(double a) { return std::remainder(a, 2.0 * M_PI); }
+double wrap(double a) {
+  return std::remainder(a, 2.0 * M_PI);
+}
 
 /// One character per 10 scans.
 void print_line(const std::string& title, const std::string& line) {
@@ -116,8 +118,8 @@ void pictures(const io::LoadedDataset& d, const DualLocalization& r, const std::
         continue;
       Eigen::Matrix2Xd at(2, 1);
       at.col(0) = f.pose.translation();
-      draw_points(picture, map.geometry(), at,
-                  f.converged ? Colour{0, 160, 0} : Colour{220, 0, 0}, 0);
+      draw_points(picture, map.geometry(), at, f.converged ? Colour{0, 160, 0} : Colour{220, 0, 0},
+                  0);
       if (s.scan % every == 0) {
         const ScanObservation obs = make_observation(d.log->scans[s.scan], {180});
         Eigen::Matrix2Xd ends(2, static_cast<Eigen::Index>(obs.size()));
@@ -137,7 +139,8 @@ void pictures(const io::LoadedDataset& d, const DualLocalization& r, const std::
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    fmt::print(stderr, "usage: {} DATASET [--global] [--pictures PREFIX] [--from S --to S --every K]\n",
+    fmt::print(stderr,
+               "usage: {} DATASET [--global] [--pictures PREFIX] [--from S --to S --every K]\n",
                argv[0]);
     return 2;
   }
@@ -263,35 +266,41 @@ int main(int argc, char** argv) {
                      ++n;
                    }
                  }
-                 return n == 0 ? '-' : static_cast<char>('0' + std::min(9, static_cast<int>(10 * f / n)));
+                 return n == 0 ? '-'
+                               : static_cast<char>('0' + std::min(9, static_cast<int>(10 * f / n)));
                }));
     why_not_converged(r, plan);
   }
   std::size_t reinit = 0;
   for (const ScanRecord& s : r.scans)
     reinit += s.plan_reinitialized;
-  fmt::print("start     grid scan {} at {:.2f},{:.2f},{:.2f}; plan scan {} at {:.2f},{:.2f},{:.2f}\n",
-             r.grid_start_scan, r.start.grid.x, r.start.grid.y, r.start.grid.theta,
-             r.plan_start_scan, r.start.plan.x, r.start.plan.y, r.start.plan.theta);
+  fmt::print(
+      "start     grid scan {} at {:.2f},{:.2f},{:.2f}; plan scan {} at {:.2f},{:.2f},{:.2f}\n",
+      r.grid_start_scan, r.start.grid.x, r.start.grid.y, r.start.grid.theta, r.plan_start_scan,
+      r.start.plan.x, r.start.plan.y, r.start.plan.theta);
   if (r.registration)
-    fmt::print("registration: {} points, {} hypotheses, ll {:.1f} (runner-up {:.1f}), plan origin {:.2f},{:.2f},{:.2f} scale {:.4f}\n",
-               r.registration->points, r.registration->hypotheses, r.registration->log_likelihood,
-               r.registration->runner_up_log_likelihood, r.registration->registration.origin_in_plan().x,
-               r.registration->registration.origin_in_plan().y, r.registration->registration.origin_in_plan().theta,
-               r.registration->registration.scale());
+    fmt::print(
+        "registration: {} points, {} hypotheses, ll {:.1f} (runner-up {:.1f}), plan origin "
+        "{:.2f},{:.2f},{:.2f} scale {:.4f}\n",
+        r.registration->points, r.registration->hypotheses, r.registration->log_likelihood,
+        r.registration->runner_up_log_likelihood, r.registration->registration.origin_in_plan().x,
+        r.registration->registration.origin_in_plan().y,
+        r.registration->registration.origin_in_plan().theta, r.registration->registration.scale());
   fmt::print("scale     {:.5f} +- {:.5f} (search {:.5f} +- {:.5f})\n", r.plan_scale,
              r.plan_scale_std, r.plan_scale_search, r.plan_scale_search_std);
-  fmt::print("converged {:.3f} in {} periods; plan re-initialized {} times; corrections plan {} grid {}\n",
-             r.converged_fraction, r.converged_periods.size(), reinit, r.plan_corrections,
-             r.grid_corrections);
+  fmt::print(
+      "converged {:.3f} in {} periods; plan re-initialized {} times; corrections plan {} grid {}\n",
+      r.converged_fraction, r.converged_periods.size(), reinit, r.plan_corrections,
+      r.grid_corrections);
   for (const auto* dc : {&r.plan_divergences, &r.grid_divergences})
     for (const auto& [k, v] : dc->by_reason)
       fmt::print("  {} diverged: {} x {}\n", dc == &r.plan_divergences ? "plan" : "grid", v, k);
   for (const auto& [k, v] : r.rejections.by_reason())
     fmt::print("  rejected {}: {}\n", k, v);
-  fmt::print("time      {:.1f} s: global {:.1f} s, scale {:.1f} s, localize {:.1f} s, pairs {:.1f} s\n",
-             seconds, r.global_localization_seconds, r.scale_search_seconds, r.localize_seconds,
-             r.pairs_seconds);
+  fmt::print(
+      "time      {:.1f} s: global {:.1f} s, scale {:.1f} s, localize {:.1f} s, pairs {:.1f} s\n",
+      seconds, r.global_localization_seconds, r.scale_search_seconds, r.localize_seconds,
+      r.pairs_seconds);
   if (!poses_out.empty()) {
     std::ofstream out(poses_out);
     out << "scan,timestamp,grid_x,grid_y,grid_theta,grid_converged\n";
@@ -310,22 +319,25 @@ int main(int argc, char** argv) {
 
   if (!d.truth_warp) {
     const PlanRegistration whole = register_whole_map(d);
-    print_line("plan pose vs the whole gridmap registered on the plan (0 <0.25, 1 <0.5, 2 <1, 3 <2, 9 more m)",
-               timeline(r, [&](std::size_t a, std::size_t b) {
-                 double e = 0;
-                 int n = 0;
-                 for (std::size_t k = a; k < b; ++k) {
-                   if (!r.scans[k].grid.converged || !r.scans[k].plan.converged)
-                     continue;
-                   e += (whole.plan_pose(r.scans[k].grid.pose).translation() -
-                         r.scans[k].plan.pose.translation()).norm();
-                   ++n;
-                 }
-                 if (n == 0)
-                   return '-';
-                 e /= n;
-                 return e < 0.25 ? '0' : e < 0.5 ? '1' : e < 1.0 ? '2' : e < 2.0 ? '3' : '9';
-               }));
+    print_line(
+        "plan pose vs the whole gridmap registered on the plan (0 <0.25, 1 <0.5, 2 <1, 3 <2, 9 "
+        "more m)",
+        timeline(r, [&](std::size_t a, std::size_t b) {
+          double e = 0;
+          int n = 0;
+          for (std::size_t k = a; k < b; ++k) {
+            if (!r.scans[k].grid.converged || !r.scans[k].plan.converged)
+              continue;
+            e += (whole.plan_pose(r.scans[k].grid.pose).translation() -
+                  r.scans[k].plan.pose.translation())
+                     .norm();
+            ++n;
+          }
+          if (n == 0)
+            return '-';
+          e /= n;
+          return e < 0.25 ? '0' : e < 0.5 ? '1' : e < 1.0 ? '2' : e < 2.0 ? '3' : '9';
+        }));
     fmt::print("pairs     {}\n", r.pairs.size());
     return 0;
   }
@@ -371,16 +383,17 @@ int main(int argc, char** argv) {
                    if (it == by_time.end() || f.state == FilterState::uninitialized)
                      continue;
                    const auto& t = it->second;
-                   e += plan ? std::hypot(f.pose.x - t[1] * plan_per_world, f.pose.y - t[2] * plan_per_world)
+                   e += plan ? std::hypot(f.pose.x - t[1] * plan_per_world,
+                                          f.pose.y - t[2] * plan_per_world)
                              : std::hypot(f.pose.x - t[4], f.pose.y - t[5]);
                    ++n;
                  }
                  return n ? error_char(e / n) : '-';
                }));
   for (Eigen::Index i = 0; i < r.pairs.size(); ++i)
-    pair.v.push_back((d.truth_warp->plan_to_grid(r.pairs.points_in_plan.col(i)) -
-                      r.pairs.points_in_grid.col(i))
-                         .norm());
+    pair.v.push_back(
+        (d.truth_warp->plan_to_grid(r.pairs.points_in_plan.col(i)) - r.pairs.points_in_grid.col(i))
+            .norm());
   if (bad_pairs) {
     Eigen::Index k = 0;
     for (const ScanRecord& s : r.scans) {
@@ -392,19 +405,26 @@ int main(int argc, char** argv) {
       if (s.pairs && sum / s.pairs > 0.15) {
         const auto it = by_time.find(std::lround(d.log->scans[s.scan].timestamp * 1000));
         const auto& t = it->second;
-        fmt::print("scan {} pairs {} mean {:.3f} worst {:.3f}; plan match err {:.3f} m {:.2f} deg in {}/{} c {:.2f}; grid match err {:.3f} m {:.2f} deg\n",
-                   s.scan, s.pairs, sum / s.pairs, worst,
-                   std::hypot(s.plan.match.pose.x - t[1] * plan_per_world, s.plan.match.pose.y - t[2] * plan_per_world),
-                   wrap(s.plan.match.pose.theta - t[3]) * 180 / M_PI, s.plan.match.inliers, s.plan.match.endpoints, s.plan.match.constraint,
-                   std::hypot(s.grid.match.pose.x - t[4], s.grid.match.pose.y - t[5]), wrap(s.grid.match.pose.theta - t[6]) * 180 / M_PI);
+        fmt::print(
+            "scan {} pairs {} mean {:.3f} worst {:.3f}; plan match err {:.3f} m {:.2f} deg in "
+            "{}/{} c {:.2f}; grid match err {:.3f} m {:.2f} deg\n",
+            s.scan, s.pairs, sum / s.pairs, worst,
+            std::hypot(s.plan.match.pose.x - t[1] * plan_per_world,
+                       s.plan.match.pose.y - t[2] * plan_per_world),
+            wrap(s.plan.match.pose.theta - t[3]) * 180 / M_PI, s.plan.match.inliers,
+            s.plan.match.endpoints, s.plan.match.constraint,
+            std::hypot(s.grid.match.pose.x - t[4], s.grid.match.pose.y - t[5]),
+            wrap(s.grid.match.pose.theta - t[6]) * 180 / M_PI);
       }
     }
   }
   fmt::print("true scale {:.5f}\n", 1.0 / plan_per_world);
   fmt::print("plan pose         {}; heading {} deg\n", plan_pos.text(), plan_head.text(180 / M_PI));
   fmt::print("grid pose         {}; heading {} deg\n", grid_pos.text(), grid_head.text(180 / M_PI));
-  fmt::print("matched plan pose {}; heading {} deg\n", mplan_pos.text(), mplan_head.text(180 / M_PI));
-  fmt::print("matched grid pose {}; heading {} deg\n", mgrid_pos.text(), mgrid_head.text(180 / M_PI));
+  fmt::print("matched plan pose {}; heading {} deg\n", mplan_pos.text(),
+             mplan_head.text(180 / M_PI));
+  fmt::print("matched grid pose {}; heading {} deg\n", mgrid_pos.text(),
+             mgrid_head.text(180 / M_PI));
   fmt::print("pairs     {}: error {}\n", r.pairs.size(), pair.text());
   return 0;
 }

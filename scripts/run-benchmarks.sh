@@ -13,4 +13,11 @@ for exe in "$build"/bench/*_bench; do
   "$exe" --benchmark_filter="$filter" --benchmark_out="$out/$name.json" \
          --benchmark_out_format=json
 done
+# End to end: the dual localization of the real Freiburg 079 run (2 x 2000 particles, 60 beams).
+fixture="$(dirname "$0")/../tests/fixtures/fr079"
+if [ -d "$(dirname "$0")/../../shared/data/fr079" ] && [ "$filter" = "." ]; then
+  echo "== fr079 end to end (bench/localization_accuracy_eval)"
+  "$build/bench/localization_accuracy_eval" "$fixture" | tee "$out/fr079_localization.txt" |
+    grep -E "^(time|gridmap|tracking|scale|converged)"
+fi
 echo "results: $out"

@@ -26,7 +26,8 @@ void run_align(const std::string& dataset, const std::string& out, std::uint64_t
   for (const std::string& w : d.warnings)
     spdlog::warn("{}", w);
   io::AlignmentTimings timings;
-  timings.load = std::chrono::duration<double>(std::chrono::steady_clock::now() - load_start).count();
+  timings.load =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - load_start).count();
   const AlignmentInputs inputs{d.plan_grid,
                                d.plan ? &*d.plan : nullptr,
                                d.plan_wall_samples,

@@ -32,10 +32,11 @@ void add_demo_command(CLI::App& root) {
     io::write_simulated_dataset(d, out / "dataset", true);
     fmt::print("aligning it into {}\n\n", (out / "align").string());
     run_align((out / "dataset").string(), (out / "align").string(), args->seed, 5);
-    fmt::print("\ndemo: the dataset is in {} (preview.png: the plan's walls through the exact "
-               "warp), the results in {} (overlays/ show the plan's walls through each model in "
-               "red, through the truth in green)\n",
-               (out / "dataset").string(), (out / "align").string());
+    fmt::print(
+        "\ndemo: the dataset is in {} (preview.png: the plan's walls through the exact "
+        "warp), the results in {} (overlays/ show the plan's walls through each model in "
+        "red, through the truth in green)\n",
+        (out / "dataset").string(), (out / "align").string());
   });
 }
 

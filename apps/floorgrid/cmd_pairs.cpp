@@ -37,7 +37,8 @@ void add_pairs_command(CLI::App& root) {
   cmd->add_option("DATASET", args->dataset, "dataset.yaml or its folder")->required();
   cmd->add_option("--out", args->out, "pairs CSV to write (plan_x,plan_y,grid_x,grid_y)")
       ->required();
-  cmd->add_option("--seed", args->seed, "randomness of the particle filters")->capture_default_str();
+  cmd->add_option("--seed", args->seed, "randomness of the particle filters")
+      ->capture_default_str();
   cmd->callback([args] {
     const std::filesystem::path out(args->out);
     io::prepare_output_folder(out.parent_path().empty() ? "." : out.parent_path());
@@ -48,8 +49,7 @@ void add_pairs_command(CLI::App& root) {
     options.seed = args->seed;
     ProgressLine progress;
     const DualLocalization l = localize_dual(
-        d.plan_grid, d.gridmap, dataset_log(d), start_poses(d), d.manifest.floorplan_scale,
-        options,
+        d.plan_grid, d.gridmap, dataset_log(d), start_poses(d), d.manifest.floorplan_scale, options,
         [&](const DualProgress& p) {
           progress.update(p.phase, p.scan, p.scans, p.converged ? "converged" : "not converged");
         },

@@ -9,7 +9,9 @@ namespace floorgrid::app {
 
 ProgressLine::ProgressLine() : enabled_(isatty(fileno(stderr)) != 0) {}
 
-ProgressLine::~ProgressLine() { finish(); }
+ProgressLine::~ProgressLine() {
+  finish();
+}
 
 void ProgressLine::update(const std::string& stage, std::size_t done, std::size_t total,
                           const std::string& detail) {
@@ -25,8 +27,8 @@ void ProgressLine::update(const std::string& stage, std::size_t done, std::size_
   last_draw_ = now;
   const double seconds = std::chrono::duration<double>(now - stage_start_).count();
   const std::string rate = seconds > 0.2 ? fmt::format(" {:.0f}/s", done / seconds) : "";
-  const std::string line = fmt::format("{}: {}/{}{}{}{}", stage, done, total, rate,
-                                       detail.empty() ? "" : "  ", detail);
+  const std::string line =
+      fmt::format("{}: {}/{}{}{}{}", stage, done, total, rate, detail.empty() ? "" : "  ", detail);
   fmt::print(stderr, "\r\033[K{}", line);
   std::fflush(stderr);
   shown_ = true;

@@ -8,9 +8,13 @@ namespace floorgrid::app {
 
 namespace {
 
-std::string metres(double v) { return std::isfinite(v) ? fmt::format("{:.3f}", v) : "-"; }
+std::string metres(double v) {
+  return std::isfinite(v) ? fmt::format("{:.3f}", v) : "-";
+}
 
-std::string pose(const Pose2& p) { return fmt::format("({:.2f}, {:.2f}, {:.3f})", p.x, p.y, p.theta); }
+std::string pose(const Pose2& p) {
+  return fmt::format("({:.2f}, {:.2f}, {:.3f})", p.x, p.y, p.theta);
+}
 
 std::string reasons(const DivergenceCount& d) {
   if (d.total == 0)
@@ -37,14 +41,17 @@ void print_localization(const DualLocalization& l,
     if (count > 0)
       rejected += fmt::format("{}{} {}", rejected.empty() ? "" : ", ", reason, count);
   }
-  fmt::print("rejected    {} beams: {}\n", l.rejections.total(), rejected.empty() ? "none" : rejected);
-  fmt::print("converged   both filters on {:.1f}% of the scans after first converging, {} periods, "
-             "longest gap {} scans\n",
-             100.0 * l.converged_fraction, l.converged_periods.size(), l.longest_gap);
+  fmt::print("rejected    {} beams: {}\n", l.rejections.total(),
+             rejected.empty() ? "none" : rejected);
+  fmt::print(
+      "converged   both filters on {:.1f}% of the scans after first converging, {} periods, "
+      "longest gap {} scans\n",
+      100.0 * l.converged_fraction, l.converged_periods.size(), l.longest_gap);
   if (l.plan_scale_estimated) {
-    fmt::print("plan scale  {:.4f} +- {:.4f} world metres per plan metre (estimated; the search "
-               "gave {:.4f})\n",
-               l.plan_scale, l.plan_scale_std, l.plan_scale_search);
+    fmt::print(
+        "plan scale  {:.4f} +- {:.4f} world metres per plan metre (estimated; the search "
+        "gave {:.4f})\n",
+        l.plan_scale, l.plan_scale_std, l.plan_scale_search);
   } else {
     fmt::print("plan scale  {:.4f} (given)\n", l.plan_scale);
   }
@@ -56,19 +63,19 @@ void print_localization(const DualLocalization& l,
     fmt::print("pair error  median {} m, mean {} m, p95 {} m (against the truth)\n",
                metres(pair_errors->median), metres(pair_errors->mean), metres(pair_errors->p95));
   }
-  fmt::print("time        global localization {:.1f} s, scale {:.1f} s, tracking {:.1f} s, "
-             "pairs {:.1f} s\n",
-             l.global_localization_seconds, l.scale_search_seconds, l.localize_seconds,
-             l.pairs_seconds);
+  fmt::print(
+      "time        global localization {:.1f} s, scale {:.1f} s, tracking {:.1f} s, "
+      "pairs {:.1f} s\n",
+      l.global_localization_seconds, l.scale_search_seconds, l.localize_seconds, l.pairs_seconds);
   for (const std::string& note : l.notes)
     fmt::print("note        {}\n", note);
 }
 
 void print_models(const Alignment& a) {
   const bool truth = a.truth.has_value();
-  fmt::print("\nmodel      {:>9} {:>9} {:>9} {:>9} {:>10} {:>10} {:>8}\n",
-             truth ? "mean_m" : "", truth ? "median_m" : "", truth ? "p95_m" : "", "cv_m",
-             "walls_m", "there+back", "fit_s");
+  fmt::print("\nmodel      {:>9} {:>9} {:>9} {:>9} {:>10} {:>10} {:>8}\n", truth ? "mean_m" : "",
+             truth ? "median_m" : "", truth ? "p95_m" : "", "cv_m", "walls_m", "there+back",
+             "fit_s");
   for (const ModelAlignment& m : a.models) {
     const ModelReport& r = m.report;
     if (!r.failure.empty()) {
@@ -85,10 +92,11 @@ void print_models(const Alignment& a) {
                r.summary.seconds);
   }
   if (truth)
-    fmt::print("errors against the truth over {} domain points ({})\n", a.domain.points_in_plan.cols(),
-               a.domain.kind);
-  fmt::print("walls_m: median distance of the plan's walls, mapped, to the gridmap's walls "
-             "(within 2 m of a pair)\n");
+    fmt::print("errors against the truth over {} domain points ({})\n",
+               a.domain.points_in_plan.cols(), a.domain.kind);
+  fmt::print(
+      "walls_m: median distance of the plan's walls, mapped, to the gridmap's walls "
+      "(within 2 m of a pair)\n");
   if (!a.chosen.empty())
     fmt::print("auto chose  {}\n", a.chosen);
 }

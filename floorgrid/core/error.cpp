@@ -11,12 +11,14 @@ std::string format_location(const std::string& message, const std::string& file,
   std::ostringstream out;
   if (!file.empty()) {
     out << file;
-    if (line > 0) out << ':' << line;
+    if (line > 0)
+      out << ':' << line;
     out << ": ";
   } else if (line > 0) {
     out << "line " << line << ": ";
   }
-  if (!field.empty()) out << '\'' << field << "': ";
+  if (!field.empty())
+    out << '\'' << field << "': ";
   out << message;
   return out.str();
 }

@@ -8,7 +8,8 @@ namespace floorgrid {
 std::int64_t Random::integer(std::int64_t lo, std::int64_t hi) {
   assert(hi >= lo);
   const std::uint64_t range = static_cast<std::uint64_t>(hi - lo) + 1;
-  if (range == 0) return static_cast<std::int64_t>(engine_());  // the full 64-bit range
+  if (range == 0)
+    return static_cast<std::int64_t>(engine_());  // the full 64-bit range
   // Rejection sampling: unbiased for any range.
   const std::uint64_t limit = UINT64_MAX - UINT64_MAX % range;
   std::uint64_t draw = 0;

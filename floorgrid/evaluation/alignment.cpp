@@ -101,12 +101,12 @@ Alignment align(const AlignmentInputs& in, const AlignmentOptions& options,
   if (pairs.size() == 0)
     return a;
   const auto fit_start = std::chrono::steady_clock::now();
-  std::vector<ModelReport> reports = compare_models(
-      pairs, a.domain, a.truth, options.models,
-      [&](const std::string& model, std::size_t done, std::size_t total) {
-        if (progress)
-          progress({"fit", model, done, total});
-      });
+  std::vector<ModelReport> reports =
+      compare_models(pairs, a.domain, a.truth, options.models,
+                     [&](const std::string& model, std::size_t done, std::size_t total) {
+                       if (progress)
+                         progress({"fit", model, done, total});
+                     });
   const double total_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - fit_start).count();
   double wall_seconds = 0.0;

@@ -15,14 +15,14 @@ namespace floorgrid {
 
 /// What the main job works on: a dataset already read (see io::load_dataset).
 struct AlignmentInputs {
-  const OccupancyGrid& plan_grid;              ///< the plan as a grid (plan metres)
-  const VectorFloorplan* plan = nullptr;       ///< a DXF plan's walls (layers filtered), or null
-  const Eigen::Matrix2Xd& plan_wall_samples;   ///< plan wall points every ~5 cm (plan metres)
-  const OccupancyGrid& gridmap;                ///< the robot's map
-  const RobotLog& log;                         ///< the run
-  std::optional<StartPoses> start;             ///< the manifest's initial poses
-  std::optional<double> plan_scale;            ///< the manifest's scale (nullopt: auto)
-  const PlanTruth* truth_warp = nullptr;       ///< a simulator's exact truth, or null
+  const OccupancyGrid& plan_grid;                ///< the plan as a grid (plan metres)
+  const VectorFloorplan* plan = nullptr;         ///< a DXF plan's walls (layers filtered), or null
+  const Eigen::Matrix2Xd& plan_wall_samples;     ///< plan wall points every ~5 cm (plan metres)
+  const OccupancyGrid& gridmap;                  ///< the robot's map
+  const RobotLog& log;                           ///< the run
+  std::optional<StartPoses> start;               ///< the manifest's initial poses
+  std::optional<double> plan_scale;              ///< the manifest's scale (nullopt: auto)
+  const PlanTruth* truth_warp = nullptr;         ///< a simulator's exact truth, or null
   const ReferencePairs* manual_pairs = nullptr;  ///< hand-picked truth pairs, or null
 };
 
@@ -38,17 +38,17 @@ struct AlignmentOptions {
 /// How far a model puts the plan's walls from the gridmap's walls (no truth needed): each plan
 /// wall point mapped to the grid, its distance to the nearest occupied gridmap cell.
 struct WallDistance {
-  std::size_t points = 0;                ///< wall points mapped
-  double median_m = 0.0;                 ///< median distance over them
-  std::size_t near_points = 0;           ///< of which within near_pairs of a pair
-  double near_median_m = 0.0;            ///< median distance over those
-  std::vector<double> distances;         ///< per wall point (plan_wall_samples order), metres
+  std::size_t points = 0;         ///< wall points mapped
+  double median_m = 0.0;          ///< median distance over them
+  std::size_t near_points = 0;    ///< of which within near_pairs of a pair
+  double near_median_m = 0.0;     ///< median distance over those
+  std::vector<double> distances;  ///< per wall point (plan_wall_samples order), metres
 };
 
 /// One model's judgement.
 struct ModelAlignment {
-  ModelReport report;         ///< fit, errors against the truth, back-and-forth
-  WallDistance wall_distance; ///< against the gridmap's walls
+  ModelReport report;          ///< fit, errors against the truth, back-and-forth
+  WallDistance wall_distance;  ///< against the gridmap's walls
 };
 
 /// Progress of the main job.
@@ -83,8 +83,8 @@ Alignment align(const AlignmentInputs& inputs, const AlignmentOptions& options =
 /// The distance from each plan wall point, mapped by `plan_to_grid`, to the nearest occupied
 /// cell of `gridmap`, summarized over all points and over those within `near` metres of a
 /// pair's plan point.
-WallDistance wall_distance(const Eigen::Matrix2Xd& plan_wall_samples, const Eigen::Matrix2Xd& mapped,
-                           const OccupancyGrid& gridmap, const Eigen::Matrix2Xd& pair_points_in_plan,
-                           double near);
+WallDistance wall_distance(const Eigen::Matrix2Xd& plan_wall_samples,
+                           const Eigen::Matrix2Xd& mapped, const OccupancyGrid& gridmap,
+                           const Eigen::Matrix2Xd& pair_points_in_plan, double near);
 
 }  // namespace floorgrid

@@ -26,7 +26,8 @@ std::vector<ModelReport> compare_models(const ReferencePairs& pairs, const Evalu
   for (std::size_t done = 0; done < order.size(); ++done) {
     const std::size_t k = order[done];
     const std::string& name = options.models[k];
-    if (progress) progress(name, done, options.models.size());
+    if (progress)
+      progress(name, done, options.models.size());
     ModelReport report;
     report.name = name;
     MappingOptions mapping = options.mapping;
@@ -61,14 +62,15 @@ std::vector<ModelReport> compare_models(const ReferencePairs& pairs, const Evalu
       report.errors = error_statistics(errors);
       report.histogram = error_histogram(errors);
     }
-    report.back_and_forth = back_and_forth(*report.model, domain.points_in_plan,
-                                           options.back_and_forth_rounds,
-                                           options.back_and_forth_points);
+    report.back_and_forth =
+        back_and_forth(*report.model, domain.points_in_plan, options.back_and_forth_rounds,
+                       options.back_and_forth_points);
     report.evaluate_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     reports[k] = std::move(report);
   }
-  if (progress) progress("", options.models.size(), options.models.size());
+  if (progress)
+    progress("", options.models.size(), options.models.size());
   return reports;
 }
 

@@ -27,15 +27,17 @@ struct ModelReport {
 /// Which models are fitted and how they are judged.
 struct ModelComparisonOptions {
   /// The models fitted (SPEC: at least gt, gp, gpgt, ct, dt, tps, lc, auto).
-  std::vector<std::string> models = {"lc", "gt", "gt-rigid", "gt-affine", "ct", "gp", "gpgt", "dt", "tps", "auto"};
-  MappingOptions mapping;            ///< options of every model (`model` is set per model)
-  int cv_folds = 5;                  ///< k-fold cross-validation of each model (0: none)
-  int back_and_forth_rounds = 100;   ///< thesis 6.5
+  std::vector<std::string> models = {"lc", "gt",   "gt-rigid", "gt-affine", "ct",
+                                     "gp", "gpgt", "dt",       "tps",       "auto"};
+  MappingOptions mapping;                   ///< options of every model (`model` is set per model)
+  int cv_folds = 5;                         ///< k-fold cross-validation of each model (0: none)
+  int back_and_forth_rounds = 100;          ///< thesis 6.5
   std::size_t back_and_forth_points = 300;  ///< domain points followed
 };
 
 /// Progress: the model being worked on, and how many are done.
-using ModelProgress = std::function<void(const std::string& model, std::size_t done, std::size_t total)>;
+using ModelProgress =
+    std::function<void(const std::string& model, std::size_t done, std::size_t total)>;
 
 /// Fits every model to `pairs`, cross-validates it, and (with a domain and a truth) measures its
 /// errors and its back-and-forth drift over the domain. A model that cannot be fitted is

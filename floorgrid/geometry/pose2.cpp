@@ -7,8 +7,10 @@ namespace floorgrid {
 double normalize_angle(double angle) {
   constexpr double kTwoPi = 2.0 * std::numbers::pi;
   angle = std::fmod(angle, kTwoPi);
-  if (angle <= -std::numbers::pi) angle += kTwoPi;
-  if (angle > std::numbers::pi) angle -= kTwoPi;
+  if (angle <= -std::numbers::pi)
+    angle += kTwoPi;
+  if (angle > std::numbers::pi)
+    angle -= kTwoPi;
   return angle;
 }
 
@@ -20,7 +22,9 @@ Eigen::Matrix2d rotation_2d(double angle) {
   return r;
 }
 
-Eigen::Matrix2d Pose2::rotation() const { return rotation_2d(theta); }
+Eigen::Matrix2d Pose2::rotation() const {
+  return rotation_2d(theta);
+}
 
 Eigen::Matrix3d Pose2::matrix() const {
   Eigen::Matrix3d m = Eigen::Matrix3d::Identity();
@@ -44,6 +48,8 @@ Pose2 Pose2::inverse() const {
   return {p.x(), p.y(), normalize_angle(-theta)};
 }
 
-Pose2 Pose2::between(const Pose2& other) const { return inverse().compose(other); }
+Pose2 Pose2::between(const Pose2& other) const {
+  return inverse().compose(other);
+}
 
 }  // namespace floorgrid

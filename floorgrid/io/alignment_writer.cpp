@@ -17,7 +17,9 @@ namespace {
 using nlohmann::json;
 
 /// A number, or null when it is not finite (JSON has no infinity).
-json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+json number(double v) {
+  return std::isfinite(v) ? json(v) : json(nullptr);
+}
 
 json model_json(const ModelAlignment& m) {
   const ModelReport& r = m.report;
@@ -89,15 +91,14 @@ json metrics_json(const Alignment& a, const std::string& dataset, const Alignmen
   j["plan_scale"] = number(l.plan_scale);
   j["plan_scale_std"] = number(l.plan_scale_std);
   j["plan_scale_estimated"] = l.plan_scale_estimated;
-  j["localization"] = {
-      {"grid_start_scan", l.grid_start_scan},
-      {"longest_gap_scans", l.longest_gap},
-      {"plan_start_scan", l.plan_start_scan},
-      {"start_plan", {l.start.plan.x, l.start.plan.y, l.start.plan.theta}},
-      {"start_grid", {l.start.grid.x, l.start.grid.y, l.start.grid.theta}},
-      {"plan_divergences", l.plan_divergences.by_reason},
-      {"grid_divergences", l.grid_divergences.by_reason},
-      {"notes", l.notes}};
+  j["localization"] = {{"grid_start_scan", l.grid_start_scan},
+                       {"longest_gap_scans", l.longest_gap},
+                       {"plan_start_scan", l.plan_start_scan},
+                       {"start_plan", {l.start.plan.x, l.start.plan.y, l.start.plan.theta}},
+                       {"start_grid", {l.start.grid.x, l.start.grid.y, l.start.grid.theta}},
+                       {"plan_divergences", l.plan_divergences.by_reason},
+                       {"grid_divergences", l.grid_divergences.by_reason},
+                       {"notes", l.notes}};
   j["domain"] = {{"kind", a.domain.kind}, {"points", a.domain.points_in_plan.cols()}};
   j["models"] = json::object();
   for (const ModelAlignment& m : a.models)

@@ -23,8 +23,8 @@ nlohmann::json metrics_json(const Alignment& alignment, const std::string& datas
 
 /// What write_alignment wrote.
 struct AlignmentFiles {
-  std::filesystem::path folder;             ///< the output folder
-  std::vector<std::filesystem::path> files; ///< every file, relative to the folder
+  std::filesystem::path folder;              ///< the output folder
+  std::vector<std::filesystem::path> files;  ///< every file, relative to the folder
 };
 
 /// Writes the main job's results into `folder` (created when missing), each file atomically:

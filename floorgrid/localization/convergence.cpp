@@ -58,8 +58,8 @@ const ConvergenceCheck& ConvergenceMonitor::update(const PoseEstimate& estimate,
     // keeps its last verdict, so a converged filter stays converged on the other criteria and
     // an unconverged one cannot converge on it.
     last_.beam_ok = previous.beam_ok;
-    last_.criteria_met = last_.position_ok && last_.heading_ok && last_.scale_ok &&
-                         last_.ess_ok && last_.beam_ok;
+    last_.criteria_met =
+        last_.position_ok && last_.heading_ok && last_.scale_ok && last_.ess_ok && last_.beam_ok;
   }
   last_.consecutive_met = last_.criteria_met ? previous.consecutive_met + 1 : 0;
   last_.consecutive_failed = last_.criteria_met ? 0 : previous.consecutive_failed + 1;

@@ -97,8 +97,9 @@ std::pair<double, double> search_scale(FilterRunner& runner, std::size_t first, 
     const PoseEstimate last = estimate_pose(runner.filter().particles());
     means.push_back(last.scale);
     variances.push_back(last.scale_std * last.scale_std);
-    notes.push_back("the plan filter did not converge during the scale search: scale from its "
-                    "last scan");
+    notes.push_back(
+        "the plan filter did not converge during the scale search: scale from its "
+        "last scan");
   }
   double mean = 0.0, within = 0.0, between = 0.0;
   for (std::size_t j = 0; j < means.size(); ++j) {
@@ -221,8 +222,9 @@ DualLocalization localize_dual(const OccupancyGrid& drawn_plan, const OccupancyG
   // A given start the gridmap filter had to abandon says nothing about the plan either: the
   // plan is then located like without a start.
   if (start && !start_held) {
-    result.notes.push_back("the gridmap filter diverged from the given start before converging: "
-                           "initial_pose ignored, the plan located by registering the run");
+    result.notes.push_back(
+        "the gridmap filter diverged from the given start before converging: "
+        "initial_pose ignored, the plan located by registering the run");
   }
   const std::optional<StartPoses> given = start_held ? start : std::nullopt;
   const Pose2 grid_start = given ? given->grid : result.scans[result.grid_start_scan].grid.pose;
@@ -248,8 +250,8 @@ DualLocalization localize_dual(const OccupancyGrid& drawn_plan, const OccupancyG
     }
     const ScanObservation submap = build_submap(log, scans, poses, grid_start, o.submap);
     const LikelihoodFieldModel wide(plan, o.registration_likelihood);
-    result.registration = register_on_plan(plan, wide, submap, grid_start, scales, scale,
-                                           o.registration, o.threads);
+    result.registration =
+        register_on_plan(plan, wide, submap, grid_start, scales, scale, o.registration, o.threads);
     registration = result.registration->registration;
     if (!plan_scale) {
       scale = registration.scale();
@@ -276,8 +278,7 @@ DualLocalization localize_dual(const OccupancyGrid& drawn_plan, const OccupancyG
     FilterRunnerOptions runner_options = o.plan_runner;
     runner_options.improved_proposal = false;  // the proposal would match at the mean scale
     runner_options.refine = false;
-    const MapModel search_model =
-        make_model(plan, o.plan_likelihood, o.scale_search_model, o.beam);
+    const MapModel search_model = make_model(plan, o.plan_likelihood, o.scale_search_model, o.beam);
     std::vector<ScanObservation> search_obs;
     search_obs.reserve(n);
     for (const LaserScan& scan : log.scans)
@@ -285,15 +286,15 @@ DualLocalization localize_dual(const OccupancyGrid& drawn_plan, const OccupancyG
     FilterRunner runner(std::move(filter), search_model.model(), plan_walls, log, search_obs,
                         runner_options);
     std::vector<std::pair<std::size_t, Pose2>> searched;
-    std::tie(scale, result.plan_scale_std) =
-        search_scale(runner, result.plan_start_scan,
-                     static_cast<std::size_t>(std::max(1, o.scale_search_scans)), n, result.notes,
-                     searched);
+    std::tie(scale, result.plan_scale_std) = search_scale(
+        runner, result.plan_start_scan, static_cast<std::size_t>(std::max(1, o.scale_search_scans)),
+        n, result.notes, searched);
     // The profile: which scale puts the most endpoints exactly on the plan's walls.
     if (!searched.empty() && o.scale_profile_steps > 0) {
       std::vector<ScanObservation> points;
       std::vector<Pose2> poses;
-      const std::size_t count = std::min(searched.size(), std::max<std::size_t>(1, o.scale_profile_scans));
+      const std::size_t count =
+          std::min(searched.size(), std::max<std::size_t>(1, o.scale_profile_scans));
       for (std::size_t k = 0; k < count; ++k) {
         const auto& [scan, pose] = searched[k * searched.size() / count];
         points.push_back(make_observation(log.scans[scan], o.plan_runner.match_observation));
@@ -305,9 +306,9 @@ DualLocalization localize_dual(const OccupancyGrid& drawn_plan, const OccupancyG
       std::vector<double> candidates;
       for (int k = -o.scale_profile_steps; k <= o.scale_profile_steps; ++k)
         candidates.push_back(scale * (1.0 + o.scale_profile_range * k / o.scale_profile_steps));
-      const ScaleProfile profile = profile_scale(plan_walls, views, poses, candidates,
-                                                 o.plan_runner.match, plan_rays,
-                                                 o.plan_runner.beam_tolerance);
+      const ScaleProfile profile =
+          profile_scale(plan_walls, views, poses, candidates, o.plan_runner.match, plan_rays,
+                        o.plan_runner.beam_tolerance);
       if (std::abs(profile.best / scale - 1.0) > 1e-9)
         result.notes.push_back("the scale search gave " + std::to_string(scale) +
                                ", the profile of matched scans " + std::to_string(profile.best));

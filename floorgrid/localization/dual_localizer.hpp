@@ -8,8 +8,8 @@
 
 #include "floorgrid/localization/beam_model.hpp"
 #include "floorgrid/localization/filter_runner.hpp"
-#include "floorgrid/localization/outlier_scans.hpp"
 #include "floorgrid/localization/likelihood_field_model.hpp"
+#include "floorgrid/localization/outlier_scans.hpp"
 #include "floorgrid/localization/pair_extraction.hpp"
 #include "floorgrid/localization/particle_filter.hpp"
 #include "floorgrid/localization/plan_registration.hpp"
@@ -63,7 +63,7 @@ struct DualLocalizerOptions {
   /// How each filter is fed: update gate, improved proposal, scan matching (the plan's and the
   /// gridmap's).
   FilterRunnerOptions plan_runner, grid_runner;
-  WallFieldOptions walls;       ///< the scan matchers' wall lookup
+  WallFieldOptions walls;  ///< the scan matchers' wall lookup
   /// Localize on the plan's walls as a robot inside sees them: the far faces of walls drawn as
   /// two lines (the outline's outer line, a wall's hollow) are dropped (visible_walls).
   bool visible_walls_only = true;
@@ -111,7 +111,8 @@ struct DualLocalizerOptions {
   /// the refitted scale (and the scale is refitted on that), at most max_plan_passes passes.
   double retrack_scale_change = 0.002;
   int max_plan_passes = 2;
-  int max_global_scans = 600;  ///< a gridmap filter not converged by then: global localization failed
+  int max_global_scans =
+      600;  ///< a gridmap filter not converged by then: global localization failed
 
   // ---- the dual check: the two filters must agree through the plan's registration ----
   /// The local registration (LocalRegistration) from the last scans where both filters were
@@ -178,14 +179,14 @@ struct DualLocalization {
   /// The longest run of scans between two converged periods (how long re-converging took at
   /// worst), 0 with fewer than two periods.
   std::size_t longest_gap = 0;
-  double plan_scale = 1.0;            ///< world metres per plan metre used for the pairs
-  double plan_scale_std = 0.0;        ///< its uncertainty (0 when given)
-  bool plan_scale_estimated = false;  ///< whether it was searched
-  double plan_scale_search = 0.0;     ///< the particle filter's search result
-  double plan_scale_search_std = 0.0; ///< and its spread
-  StartPoses start;                   ///< where each filter started (found or given)
-  std::size_t grid_start_scan = 0;    ///< the scan the gridmap filter first converged on
-  std::size_t plan_start_scan = 0;    ///< the scan the plan filter started tracking from
+  double plan_scale = 1.0;             ///< world metres per plan metre used for the pairs
+  double plan_scale_std = 0.0;         ///< its uncertainty (0 when given)
+  bool plan_scale_estimated = false;   ///< whether it was searched
+  double plan_scale_search = 0.0;      ///< the particle filter's search result
+  double plan_scale_search_std = 0.0;  ///< and its spread
+  StartPoses start;                    ///< where each filter started (found or given)
+  std::size_t grid_start_scan = 0;     ///< the scan the gridmap filter first converged on
+  std::size_t plan_start_scan = 0;     ///< the scan the plan filter started tracking from
   /// Where the run lies on the plan (the gridmap filter's poses -> plan poses).
   std::optional<PlanRegistrationResult> registration;
   DivergenceCount plan_divergences;  ///< the plan filter's, while localizing
@@ -197,18 +198,18 @@ struct DualLocalization {
   double global_localization_seconds = 0.0;  ///< wall clock
   double scale_search_seconds = 0.0;         ///< wall clock (search and refit)
   double localize_seconds = 0.0;             ///< wall clock of the tracking passes
-  double grid_seconds = 0.0;                 ///< of which the gridmap filter's pass (global included)
-  double pairs_seconds = 0.0;                ///< of pair extraction
-  std::vector<std::string> notes;            ///< what happened, in words
+  double grid_seconds = 0.0;       ///< of which the gridmap filter's pass (global included)
+  double pairs_seconds = 0.0;      ///< of pair extraction
+  std::vector<std::string> notes;  ///< what happened, in words
 };
 
 /// Progress of a long run.
 struct DualProgress {
-  std::string phase;         ///< "gridmap", "plan: registration", "plan: scale search", "plan"
-  std::size_t scan = 0;      ///< scans done in this phase
-  std::size_t scans = 0;     ///< scans in this phase
-  bool converged = false;    ///< the phase's filter at the last scan
-  std::size_t pairs = 0;     ///< usable scans so far (plan phase)
+  std::string phase;       ///< "gridmap", "plan: registration", "plan: scale search", "plan"
+  std::size_t scan = 0;    ///< scans done in this phase
+  std::size_t scans = 0;   ///< scans in this phase
+  bool converged = false;  ///< the phase's filter at the last scan
+  std::size_t pairs = 0;   ///< usable scans so far (plan phase)
 };
 
 /// Dual Monte Carlo localization (thesis 4.6): one particle filter on the gridmap and one on

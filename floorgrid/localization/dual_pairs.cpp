@@ -5,8 +5,6 @@
 #include <map>
 #include <optional>
 
-
-
 namespace floorgrid {
 
 bool usable_for_pairs(const ScanRecord& r, bool refine) {
@@ -105,8 +103,7 @@ void summarize_convergence(DualLocalization& result) {
     if (!ok)
       continue;
     ++both;
-    if (!result.converged_periods.empty() &&
-        result.converged_periods.back().second + 1 == r.scan) {
+    if (!result.converged_periods.empty() && result.converged_periods.back().second + 1 == r.scan) {
       result.converged_periods.back().second = r.scan;
     } else {
       result.converged_periods.emplace_back(r.scan, r.scan);

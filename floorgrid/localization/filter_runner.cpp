@@ -69,8 +69,8 @@ FilterRecord FilterRunner::step(std::size_t i) {
     if (options_.improved_proposal && tracking) {
       filter_.predict(motion);
       const ScanObservation points = make_observation(log_.scans[i], options_.match_observation);
-      proposal = apply_proposal(filter_, walls_, points, options_.match, caster_,
-                                options_.beam_tolerance);
+      proposal =
+          apply_proposal(filter_, walls_, points, options_.match, caster_, options_.beam_tolerance);
       corrections_ += proposal->ok() || proposal->failure == ScanMatchFailure::degenerate;
       status = filter_.step(OdometryMotion{}, observations_[i], model_, options_.threads);
     } else {

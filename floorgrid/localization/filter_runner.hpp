@@ -25,7 +25,7 @@ struct FilterRunnerOptions {
   /// Match each scan of a converged filter onto the walls from its mean pose (the refined pose
   /// pairs are made from).
   bool refine = true;
-  ScanMatchOptions match;                     ///< both uses of scan matching
+  ScanMatchOptions match;  ///< both uses of scan matching
   /// Map metres: with a ray caster (see FilterRunner), only beams whose range reaches the first
   /// wall along them within this are matched (beam_consistent).
   double beam_tolerance = 0.5;
@@ -85,7 +85,7 @@ class FilterRunner {
   const std::vector<ScanObservation>& observations_;
   FilterRunnerOptions options_;
   const GridRayCaster* caster_;
-  std::optional<std::size_t> last_;  // the last scan stepped
+  std::optional<std::size_t> last_;    // the last scan stepped
   double moved_ = 0.0, turned_ = 0.0;  // odometry since the last update
   std::size_t corrections_ = 0;
   std::size_t evaluations_ = 0;

@@ -108,11 +108,11 @@ class LikelihoodFieldModel : public ObservationModel {
   LikelihoodFieldOptions options_;
   double cos_yaw_ = 1.0, sin_yaw_ = 0.0;  // of the grid's yaw
   DistanceField distance_;
-  int stride_ = 0;               // table row length: width + 2
-  float max_u_ = 0.0f;           // width + 1: the right border column
-  float max_v_ = 0.0f;           // height + 1: the top border row
-  std::vector<float> log_p_;     // (width + 2) x (height + 2), border = log(z_rand)
-  std::vector<float> gaussian_;  // same layout: exp(-d^2 / 2 sigma^2), border 0
+  int stride_ = 0;                   // table row length: width + 2
+  float max_u_ = 0.0f;               // width + 1: the right border column
+  float max_v_ = 0.0f;               // height + 1: the top border row
+  std::vector<float> log_p_;         // (width + 2) x (height + 2), border = log(z_rand)
+  std::vector<float> gaussian_;      // same layout: exp(-d^2 / 2 sigma^2), border 0
   std::vector<std::uint8_t> known_;  // same layout: 1 within known_margin of an observed cell
 };
 

@@ -23,8 +23,9 @@ std::size_t reject_outlier_scans(ReferencePairs& pairs, std::vector<std::size_t>
   const Eigen::Index n = pairs.size();
   Eigen::Matrix2Xd residual(2, n);
   for (Eigen::Index i = 0; i < n; ++i)
-    residual.col(i) = pairs.points_in_grid.col(i) -
-                      (T.topLeftCorner<2, 2>() * pairs.points_in_plan.col(i) + T.topRightCorner<2, 1>());
+    residual.col(i) =
+        pairs.points_in_grid.col(i) -
+        (T.topLeftCorner<2, 2>() * pairs.points_in_plan.col(i) + T.topRightCorner<2, 1>());
   // Which scan each pair came from, and the pairs of each cell.
   std::vector<std::size_t> scan_of(static_cast<std::size_t>(n));
   {
@@ -36,7 +37,8 @@ std::size_t reject_outlier_scans(ReferencePairs& pairs, std::vector<std::size_t>
   std::map<std::pair<long, long>, std::vector<Eigen::Index>> cells;
   for (Eigen::Index i = 0; i < n; ++i) {
     const Eigen::Vector2d p = pairs.points_in_plan.col(i) / o.cell;
-    cells[{static_cast<long>(std::floor(p.x())), static_cast<long>(std::floor(p.y()))}].push_back(i);
+    cells[{static_cast<long>(std::floor(p.x())), static_cast<long>(std::floor(p.y()))}].push_back(
+        i);
   }
   // Each pair's deviation from the median residual of the other scans' pairs in its cell.
   std::vector<std::vector<double>> deviations(pairs_per_scan.size());

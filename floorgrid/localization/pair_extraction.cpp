@@ -21,11 +21,16 @@ PairRejections& PairRejections::operator+=(const PairRejections& o) {
 }
 
 std::map<std::string, std::size_t> PairRejections::by_reason() const {
-  return {{"not_converged", not_converged}, {"no_return", no_return},
-          {"off_plan_wall", off_plan_wall}, {"off_grid_wall", off_grid_wall},
-          {"subsampled", subsampled},       {"per_scan_cap", per_scan_cap},
-          {"too_far", too_far},             {"degenerate", degenerate},
-          {"unmatched", unmatched},         {"inconsistent", inconsistent},
+  return {{"not_converged", not_converged},
+          {"no_return", no_return},
+          {"off_plan_wall", off_plan_wall},
+          {"off_grid_wall", off_grid_wall},
+          {"subsampled", subsampled},
+          {"per_scan_cap", per_scan_cap},
+          {"too_far", too_far},
+          {"degenerate", degenerate},
+          {"unmatched", unmatched},
+          {"inconsistent", inconsistent},
           {"outlier_scan", outlier_scan}};
 }
 

@@ -6,15 +6,15 @@
 
 #include "floorgrid/core/random.hpp"
 #include "floorgrid/localization/robot_log.hpp"
-#include "floorgrid/mapping/reference_pairs.hpp"
 #include "floorgrid/localization/wall_field.hpp"
+#include "floorgrid/mapping/reference_pairs.hpp"
 
 namespace floorgrid {
 
 /// How laser endpoints become reference pairs (thesis 4.6.1).
 struct PairExtractionOptions {
-  int beam_step = 2;                ///< keep every k-th beam of a scan (beam subsampling)
-  int max_pairs_per_scan = 40;      ///< then at most this many pairs per scan, evenly spread
+  int beam_step = 2;            ///< keep every k-th beam of a scan (beam subsampling)
+  int max_pairs_per_scan = 40;  ///< then at most this many pairs per scan, evenly spread
   /// Metres: longer readings are not used (a filter's heading error moves an endpoint by the
   /// range times the error, so far endpoints make poor pairs); counted as `too_far`.
   double max_range = 10.0;

@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
-#include <cstdint>
 #include <unordered_set>
 
 #include "floorgrid/core/error.hpp"
@@ -35,8 +35,8 @@ ScanObservation build_submap(const RobotLog& log, std::span<const std::size_t> s
       const Eigen::Vector2d p = robot_in_origin.transform(in_robot);
       const auto bx = static_cast<std::int64_t>(std::floor(p.x() / options.bin));
       const auto by = static_cast<std::int64_t>(std::floor(p.y() / options.bin));
-      const std::uint64_t key = (static_cast<std::uint64_t>(bx) << 32) ^
-                                (static_cast<std::uint64_t>(by) & 0xffffffffULL);
+      const std::uint64_t key =
+          (static_cast<std::uint64_t>(bx) << 32) ^ (static_cast<std::uint64_t>(by) & 0xffffffffULL);
       if (bins.insert(key).second)
         points.push_back(p);
     }
@@ -59,8 +59,7 @@ Pose2 PlanRegistration::plan_pose(const Pose2& pose_in_map) const {
   return origin_in_plan_.compose({relative.x / scale_, relative.y / scale_, relative.theta});
 }
 
-void LocalRegistration::add(std::size_t scan, const Pose2& pose_in_map,
-                            const Pose2& pose_in_plan) {
+void LocalRegistration::add(std::size_t scan, const Pose2& pose_in_map, const Pose2& pose_in_plan) {
   const Pair pair{scan, pose_in_map, pose_in_plan};
   if (pairs_.size() < window_) {
     pairs_.push_back(pair);
@@ -151,9 +150,11 @@ PlanRegistrationResult register_on_plan(const OccupancyGrid& plan, const Observa
           for (int ds = with_scale ? -1 : 0; ds <= (with_scale ? 1 : 0); ++ds) {
             candidates.x.push_back(seeds.particles.x[i] + 0.5 * dx * step);
             candidates.y.push_back(seeds.particles.y[i] + 0.5 * dy * step);
-            candidates.theta.push_back(normalize_angle(seeds.particles.theta[i] + 0.5 * dt * heading_step));
+            candidates.theta.push_back(
+                normalize_angle(seeds.particles.theta[i] + 0.5 * dt * heading_step));
             if (with_scale)
-              candidates.scale.push_back(std::max(1e-3, seeds.particles.scale[i] + 0.5 * ds * scale_step));
+              candidates.scale.push_back(
+                  std::max(1e-3, seeds.particles.scale[i] + 0.5 * ds * scale_step));
           }
   }
   std::vector<double> score;
@@ -172,8 +173,8 @@ PlanRegistrationResult register_on_plan(const OccupancyGrid& plan, const Observa
   result.log_likelihood = score[best];
   result.runner_up_log_likelihood = -std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < score.size(); ++i) {
-    const double distance = std::hypot(candidates.x[i] - candidates.x[best],
-                                       candidates.y[i] - candidates.y[best]);
+    const double distance =
+        std::hypot(candidates.x[i] - candidates.x[best], candidates.y[i] - candidates.y[best]);
     if ((distance > 2.0 ||
          std::abs(normalize_angle(candidates.theta[i] - candidates.theta[best])) > 0.5) &&
         score[i] > result.runner_up_log_likelihood)

@@ -32,8 +32,12 @@ ScanObservation build_submap(const RobotLog& log, std::span<const std::size_t> s
 struct PlanRegistrationOptions {
   /// The lattice: 0.25 m, 7.5 degrees, ten scales; coarse enough to be quick, fine enough for
   /// the plan filter (started with a metre and 0.2 rad of spread) to settle from.
-  HypothesisSeedingOptions seeding{.position_step = 0.25, .headings = 48, .scales = 10,
-                                   .keep = 256, .max_hypotheses = 6'000'000, .jitter = false};
+  HypothesisSeedingOptions seeding{.position_step = 0.25,
+                                   .headings = 48,
+                                   .scales = 10,
+                                   .keep = 256,
+                                   .max_hypotheses = 6'000'000,
+                                   .jitter = false};
   /// The lattice is scored with this many of the submap's points (evenly thinned); its best
   /// `seeding.keep` are then rescored with every point, each refined over a 3 x 3 x 3 x 3
   /// sub-lattice of half steps, and the best wins.
@@ -95,7 +99,7 @@ class LocalRegistration {
   double scale_;
   std::vector<Pair> pairs_;  // a ring of at most window_ pairs
   std::size_t next_ = 0;
-  Pose2 offset_;             // plan pose of the map frame's origin (rotation, translation)
+  Pose2 offset_;  // plan pose of the map frame's origin (rotation, translation)
 };
 
 /// The registration found by register_on_plan, with how clearly it won.

@@ -36,10 +36,14 @@ void validate(const ScanMatchOptions& o) {
 
 std::string_view to_string(ScanMatchFailure failure) {
   switch (failure) {
-    case ScanMatchFailure::none: return "none";
-    case ScanMatchFailure::too_few_inliers: return "too_few_inliers";
-    case ScanMatchFailure::degenerate: return "degenerate";
-    case ScanMatchFailure::too_far: return "too_far";
+    case ScanMatchFailure::none:
+      return "none";
+    case ScanMatchFailure::too_few_inliers:
+      return "too_few_inliers";
+    case ScanMatchFailure::degenerate:
+      return "degenerate";
+    case ScanMatchFailure::too_far:
+      return "too_far";
   }
   return "unknown";
 }
@@ -213,7 +217,8 @@ ScanMatch match_scan(const WallField& walls, const ScanObservation& scan, const 
   // well those few fit.
   m.endpoints = scan.size();
   if (m.failure != ScanMatchFailure::too_few_inliers &&
-      static_cast<double>(m.inliers) < options.min_inlier_fraction * static_cast<double>(scan.size()))
+      static_cast<double>(m.inliers) <
+          options.min_inlier_fraction * static_cast<double>(scan.size()))
     m.failure = ScanMatchFailure::too_few_inliers;
   return m;
 }
@@ -233,9 +238,9 @@ ScaleProfile profile_scale(const WallField& walls, std::span<const ScanObservati
       throw InputError("candidate scales must be > 0", {}, 0, "scale_profile.candidates");
     std::size_t inliers = 0;
     for (std::size_t i = 0; i < scans.size(); ++i) {
-      const ScanMatch m = caster ? match_scan(walls, *scans[i], poses[i], scale, options, *caster,
-                                              tolerance)
-                                 : match_scan(walls, *scans[i], poses[i], scale, options);
+      const ScanMatch m =
+          caster ? match_scan(walls, *scans[i], poses[i], scale, options, *caster, tolerance)
+                 : match_scan(walls, *scans[i], poses[i], scale, options);
       inliers += m.inliers;
     }
     profile.inliers.push_back(inliers);
@@ -248,9 +253,9 @@ ScaleProfile profile_scale(const WallField& walls, std::span<const ScanObservati
 }
 
 ScaleFit fit_scale(const WallField& walls, std::span<const ScanObservation* const> scans,
-                   std::span<const Pose2> poses, double initial_scale,
-                   const ScanMatchOptions& o, int max_iterations, int jackknife_blocks,
-                   const GridRayCaster* caster, double tolerance) {
+                   std::span<const Pose2> poses, double initial_scale, const ScanMatchOptions& o,
+                   int max_iterations, int jackknife_blocks, const GridRayCaster* caster,
+                   double tolerance) {
   validate(o);
   if (caster) {
     // The same fit on each scan's beams consistent with the walls at its initial pose.

@@ -61,7 +61,7 @@ struct ScanMatch {
   double constraint = 0.0;    ///< the weakest translation direction's share (min_constraint)
   /// Unit vector (map frame) of the weakest translation direction: along a corridor.
   Eigen::Vector2d weak_direction = Eigen::Vector2d::UnitX();
-  int iterations = 0;         ///< Gauss-Newton iterations run
+  int iterations = 0;  ///< Gauss-Newton iterations run
   /// Whether the match was accepted.
   bool ok() const { return failure == ScanMatchFailure::none; }
 };
@@ -89,9 +89,9 @@ ScanMatch match_scan(const WallField& walls, const ScanObservation& scan, const 
 
 /// How well each candidate scale lets scans land on the walls.
 struct ScaleProfile {
-  double best = 1.0;                   ///< the candidate with the most inliers
-  std::vector<double> scales;          ///< the candidates
-  std::vector<std::size_t> inliers;    ///< inliers summed over the scans, per candidate
+  double best = 1.0;                 ///< the candidate with the most inliers
+  std::vector<double> scales;        ///< the candidates
+  std::vector<std::size_t> inliers;  ///< inliers summed over the scans, per candidate
 };
 
 /// For each candidate scale, every scan is matched from its pose (match_scan; with `caster`,

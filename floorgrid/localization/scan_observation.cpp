@@ -18,7 +18,8 @@ ScanObservation make_observation(const LaserScan& scan, const ObservationOptions
       ++obs.no_returns;
     }
   }
-  const std::size_t keep = std::min(returns.size(), static_cast<std::size_t>(std::max(0, options.max_beams)));
+  const std::size_t keep =
+      std::min(returns.size(), static_cast<std::size_t>(std::max(0, options.max_beams)));
   for (std::size_t k = 0; k < keep; ++k) {
     // Evenly spread: the k-th of `keep` equal strides through the returns.
     const std::size_t i = returns[k * returns.size() / keep];

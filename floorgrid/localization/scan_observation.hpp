@@ -15,12 +15,12 @@ namespace floorgrid {
 /// whole robot-frame geometry shrinks by s, since the map's metre is s world metres.
 struct ScanObservation {
   Eigen::Vector2d laser_origin = Eigen::Vector2d::Zero();  ///< laser position, robot frame, m
-  double max_range = 0.0;     ///< metres: readings at or above it are "no return"
-  std::vector<float> angle;   ///< beam direction in the robot frame, radians
-  std::vector<float> range;   ///< metres, a return (finite, below max_range, >= min_range)
-  std::vector<float> end_x;   ///< endpoint x in the robot frame, metres
-  std::vector<float> end_y;   ///< endpoint y in the robot frame, metres
-  std::vector<int> beam;      ///< index of the beam in the scan
+  double max_range = 0.0;      ///< metres: readings at or above it are "no return"
+  std::vector<float> angle;    ///< beam direction in the robot frame, radians
+  std::vector<float> range;    ///< metres, a return (finite, below max_range, >= min_range)
+  std::vector<float> end_x;    ///< endpoint x in the robot frame, metres
+  std::vector<float> end_y;    ///< endpoint y in the robot frame, metres
+  std::vector<int> beam;       ///< index of the beam in the scan
   std::size_t no_returns = 0;  ///< beams of the scan that read "no return" (not in the arrays)
 
   /// Number of beams kept.

@@ -95,9 +95,9 @@ WallField::WallField(const VectorFloorplan& plan, const GridGeometry& geometry,
   const auto add_segment = [&](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
     const Eigen::Vector2d ab = b - a;
     const double length = ab.norm();
-    const Eigen::Vector2d normal =
-        length > 0.0 ? Eigen::Vector2d(Eigen::Vector2d(-ab.y(), ab.x()) / length)
-                     : Eigen::Vector2d(Eigen::Vector2d::Zero());
+    const Eigen::Vector2d normal = length > 0.0
+                                       ? Eigen::Vector2d(Eigen::Vector2d(-ab.y(), ab.x()) / length)
+                                       : Eigen::Vector2d(Eigen::Vector2d::Zero());
     const int samples = static_cast<int>(std::ceil(length / step));
     for (int k = 0; k <= samples; ++k) {
       const Eigen::Vector2d p = samples ? a + ab * (static_cast<double>(k) / samples) : a;
@@ -108,8 +108,8 @@ WallField::WallField(const VectorFloorplan& plan, const GridGeometry& geometry,
         continue;
       // The segment's point nearest the cell centre, and how near it is.
       const Eigen::Vector2d c = geometry_.cell_center(ix, iy);
-      const double t = length > 0.0 ? std::clamp((c - a).dot(ab) / (length * length), 0.0, 1.0)
-                                     : 0.0;
+      const double t =
+          length > 0.0 ? std::clamp((c - a).dot(ab) / (length * length), 0.0, 1.0) : 0.0;
       const Eigen::Vector2d nearest = a + t * ab;
       const double distance = (nearest - c).norm();
       const std::size_t cell = static_cast<std::size_t>(iy) * geometry_.width + ix;
@@ -151,7 +151,8 @@ void WallField::orient(const std::vector<std::uint8_t>& rooms) {
   // Probe a few cells out on each side of the wall along its normal.
   const auto room_at = [&](const Eigen::Vector2d& p) {
     int ix = 0, iy = 0;
-    return geometry_.cell_of(p, ix, iy) && rooms[static_cast<std::size_t>(iy) * geometry_.width + ix];
+    return geometry_.cell_of(p, ix, iy) &&
+           rooms[static_cast<std::size_t>(iy) * geometry_.width + ix];
   };
   for (WallPoint& w : walls_) {
     if (w.normal.squaredNorm() < 0.5)

@@ -11,7 +11,7 @@ namespace floorgrid {
 
 /// A wall point a scan endpoint can be matched to: where it is and which way the wall faces.
 struct WallPoint {
-  Eigen::Vector2f point;   ///< map frame, metres
+  Eigen::Vector2f point;  ///< map frame, metres
   /// Unit normal of the wall there, or zero where the wall has no clear direction (a corner,
   /// a post): such points are matched point to point.
   Eigen::Vector2f normal;

@@ -218,7 +218,8 @@ Eigen::Vector2d LocalTransformsMapping::forward(const Eigen::Vector2d& p) const 
   const bool squared = options_.weight_power == 2.0;  // the default: no pow() per cluster
   for (const Cluster& c : clusters_) {
     const double d2 = (p - c.centroid).squaredNorm();
-    if (d2 < 1e-24) return apply(c.T_grid_plan, p);
+    if (d2 < 1e-24)
+      return apply(c.T_grid_plan, p);
     const double w = squared ? 1.0 / d2 : std::pow(d2, -0.5 * options_.weight_power);
     sum += w * apply(c.T_grid_plan, p);
     total += w;

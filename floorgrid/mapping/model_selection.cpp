@@ -122,9 +122,9 @@ void AutoMapping::fit_model(const ReferencePairs& pairs, FitSummary& summary) {
     MappingOptions candidate = *options_;
     candidate.model = name;
     const auto known = known_.find(name);
-    const CrossValidationResult cv = known != known_.end()
-                                         ? known->second
-                                         : cross_validate(candidate, pairs, options_->auto_select.cv);
+    const CrossValidationResult cv =
+        known != known_.end() ? known->second
+                              : cross_validate(candidate, pairs, options_->auto_select.cv);
     table_[name] = cv.mean_error_m;
     table[name] = {
         {"mean_error_m", std::isfinite(cv.mean_error_m) ? nlohmann::json(cv.mean_error_m)

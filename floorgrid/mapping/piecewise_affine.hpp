@@ -13,8 +13,9 @@ namespace floorgrid {
 /// (eq. 4.20-4.23). Outside the hull a point keeps the mapped nearest hull point and moves from
 /// it by the linear part of the pairs' least-squares similarity: continuous at the hull and
 /// bounded however thin the hull's triangles (extrapolating a sliver's own affine map throws
-/// points tens of metres off). The map is continuous and piecewise affine; the inverse finds the grid triangle holding the
-/// point (not invertible where that triangle is flipped against its plan triangle: a fold).
+/// points tens of metres off). The map is continuous and piecewise affine; the inverse finds the
+/// grid triangle holding the point (not invertible where that triangle is flipped against its plan
+/// triangle: a fold).
 class PiecewiseAffineMapping : public PointMapping {
  public:
   /// A dt model.

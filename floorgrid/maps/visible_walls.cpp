@@ -32,10 +32,14 @@ std::vector<std::uint8_t> flood(int w, int h, const std::vector<std::uint8_t>& s
     const std::size_t i = queue.front();
     queue.pop_front();
     const int x = static_cast<int>(i % w), y = static_cast<int>(i / w);
-    if (x > 0) visit(i - 1);
-    if (x + 1 < w) visit(i + 1);
-    if (y > 0) visit(i - w);
-    if (y + 1 < h) visit(i + w);
+    if (x > 0)
+      visit(i - 1);
+    if (x + 1 < w)
+      visit(i + 1);
+    if (y > 0)
+      visit(i - w);
+    if (y + 1 < h)
+      visit(i + w);
   }
   return reached;
 }
@@ -73,7 +77,8 @@ VisibleWalls visible_walls(const OccupancyGrid& plan, const VisibleWallsOptions&
     return result;
   const cv::Mat to_wall = distance_to(w, h, wall);
   const auto wall_distance = [&](std::size_t i) {
-    return static_cast<double>(to_wall.at<float>(static_cast<int>(i / w), static_cast<int>(i % w))) *
+    return static_cast<double>(
+               to_wall.at<float>(static_cast<int>(i / w), static_cast<int>(i % w))) *
            resolution;
   };
 
@@ -84,13 +89,14 @@ VisibleWalls visible_walls(const OccupancyGrid& plan, const VisibleWallsOptions&
     border[x] = border[static_cast<std::size_t>(h - 1) * w + x] = 1;
   for (int y = 0; y < h; ++y)
     border[static_cast<std::size_t>(y) * w] = border[static_cast<std::size_t>(y) * w + w - 1] = 1;
-  std::vector<std::uint8_t> outside = flood(
-      w, h, border, [&](std::size_t i) { return !wall[i] && wall_distance(i) > options.gap_closing; });
+  std::vector<std::uint8_t> outside = flood(w, h, border, [&](std::size_t i) {
+    return !wall[i] && wall_distance(i) > options.gap_closing;
+  });
   const cv::Mat to_outside = distance_to(w, h, outside);
   for (std::size_t i = 0; i < n; ++i) {
-    const double d =
-        static_cast<double>(to_outside.at<float>(static_cast<int>(i / w), static_cast<int>(i % w))) *
-        resolution;
+    const double d = static_cast<double>(
+                         to_outside.at<float>(static_cast<int>(i / w), static_cast<int>(i % w))) *
+                     resolution;
     if (!wall[i] && d <= options.gap_closing + resolution)
       outside[i] = 1;
   }

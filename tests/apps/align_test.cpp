@@ -18,7 +18,9 @@ using nlohmann::json;
 using test::run_floorgrid;
 using test::TempDir;
 
-std::string quoted(const fs::path& p) { return "'" + p.string() + "'"; }
+std::string quoted(const fs::path& p) {
+  return "'" + p.string() + "'";
+}
 
 json read_json(const fs::path& path) {
   std::ifstream in(path);
@@ -27,8 +29,8 @@ json read_json(const fs::path& path) {
 
 /// Simulates `preset` and aligns it; returns metrics.json.
 json simulate_and_align(const std::string& preset, int seed, const TempDir& dir) {
-  const auto sim = run_floorgrid("simulate --preset " + preset + " --seed " +
-                                 std::to_string(seed) + " --out " + quoted(dir / "data"));
+  const auto sim = run_floorgrid("simulate --preset " + preset + " --seed " + std::to_string(seed) +
+                                 " --out " + quoted(dir / "data"));
   EXPECT_EQ(sim.status, 0) << sim.err;
   const auto run = run_floorgrid("align " + quoted(dir / "data") + " --out " + quoted(dir / "out"));
   EXPECT_EQ(run.status, 0) << run.out << run.err;
@@ -58,8 +60,8 @@ TEST(AlignCommand, OfficeGivesAccuratePairsAndModelsAndEveryContractKey) {
   }
   for (const char* model : {"gt", "gp", "gpgt", "ct", "dt", "tps", "lc", "auto"}) {
     const json& j = m["models"][model];
-    for (const char* key : {"mean_error_m", "median_error_m", "p95_error_m", "fit_seconds",
-                            "cv_error_m"}) {
+    for (const char* key :
+         {"mean_error_m", "median_error_m", "p95_error_m", "fit_seconds", "cv_error_m"}) {
       EXPECT_TRUE(j.contains(key) && j[key].is_number()) << model << "." << key;
     }
     for (const char* key : {"min_m", "mean_m", "max_m"})
@@ -104,8 +106,8 @@ TEST(AlignCommand, WarehouseAislesMakeNoPairsAlongThem) {
 
 TEST(PairsCommand, OfficeInchesFindsTheUnitMixUp) {
   TempDir dir;
-  const auto sim = run_floorgrid("simulate --preset office-inches --seed 1 --out " +
-                                 quoted(dir / "data"));
+  const auto sim =
+      run_floorgrid("simulate --preset office-inches --seed 1 --out " + quoted(dir / "data"));
   ASSERT_EQ(sim.status, 0) << sim.err;
   const auto run =
       run_floorgrid("pairs " + quoted(dir / "data") + " --out " + quoted(dir / "pairs.csv"));
@@ -128,8 +130,8 @@ TEST(PairsCommand, OfficeInchesFindsTheUnitMixUp) {
 
 TEST(AlignCommand, BadInputExitsWithTwoAndWritesNothing) {
   TempDir dir;
-  const auto missing = run_floorgrid("align " + quoted(dir / "nothing") + " --out " +
-                                     quoted(dir / "out"));
+  const auto missing =
+      run_floorgrid("align " + quoted(dir / "nothing") + " --out " + quoted(dir / "out"));
   EXPECT_EQ(missing.status, 2);
   EXPECT_NE(missing.err.find("nothing"), std::string::npos) << missing.err;
   EXPECT_FALSE(fs::exists(dir / "out" / "metrics.json"));
@@ -137,16 +139,16 @@ TEST(AlignCommand, BadInputExitsWithTwoAndWritesNothing) {
   const auto sim = run_floorgrid("simulate --preset office --seed 2 --out " + quoted(dir / "data"));
   ASSERT_EQ(sim.status, 0) << sim.err;
   std::string manifest = test::read_file(dir / "data" / "dataset.yaml");
-  manifest.erase(manifest.find("log:"), manifest.find('\n', manifest.find("log:")) -
-                                           manifest.find("log:") + 1);
+  manifest.erase(manifest.find("log:"),
+                 manifest.find('\n', manifest.find("log:")) - manifest.find("log:") + 1);
   test::write_file(dir / "data" / "dataset.yaml", manifest);
-  const auto no_log = run_floorgrid("pairs " + quoted(dir / "data") + " --out " +
-                                    quoted(dir / "pairs.csv"));
+  const auto no_log =
+      run_floorgrid("pairs " + quoted(dir / "data") + " --out " + quoted(dir / "pairs.csv"));
   EXPECT_EQ(no_log.status, 2);
   EXPECT_NE(no_log.err.find("log"), std::string::npos) << no_log.err;
   EXPECT_FALSE(fs::exists(dir / "pairs.csv"));
-  const auto bad_cv = run_floorgrid("align " + quoted(dir / "data") + " --out " +
-                                    quoted(dir / "out") + " --cv 1");
+  const auto bad_cv =
+      run_floorgrid("align " + quoted(dir / "data") + " --out " + quoted(dir / "out") + " --cv 1");
   EXPECT_EQ(bad_cv.status, 2);
 }
 

@@ -18,7 +18,8 @@ TEST(Random, SameSeedSameNumbersDifferentSeedDifferent) {
   }
   Random d(42), e(43);
   int equal = 0;
-  for (int i = 0; i < 100; ++i) equal += d.uniform() == e.uniform();
+  for (int i = 0; i < 100; ++i)
+    equal += d.uniform() == e.uniform();
   EXPECT_LT(equal, 2);
 }
 
@@ -51,7 +52,8 @@ TEST(Random, IntegerCoversRangeInclusive) {
     ASSERT_LE(k, 2);
     ++hits[static_cast<std::size_t>(k + 2)];
   }
-  for (int h : hits) EXPECT_NEAR(h, 1000, 150);
+  for (int h : hits)
+    EXPECT_NEAR(h, 1000, 150);
 }
 
 }  // namespace

@@ -34,9 +34,9 @@ StartPoses manifest_start(const io::LoadedDataset& d) {
 double median_pair_error(const io::LoadedDataset& d, const ReferencePairs& pairs) {
   std::vector<double> e;
   for (Eigen::Index i = 0; i < pairs.size(); ++i)
-    e.push_back((d.truth_warp->plan_to_grid(pairs.points_in_plan.col(i)) -
-                 pairs.points_in_grid.col(i))
-                    .norm());
+    e.push_back(
+        (d.truth_warp->plan_to_grid(pairs.points_in_plan.col(i)) - pairs.points_in_grid.col(i))
+            .norm());
   std::nth_element(e.begin(), e.begin() + static_cast<long>(e.size() / 2), e.end());
   return e.empty() ? std::numeric_limits<double>::infinity() : e[e.size() / 2];
 }
@@ -88,8 +88,8 @@ TEST(DualLocalizer, NanReadingsAreSkippedNotPaired) {
 TEST(DualLocalizer, FindsBothStartsAndTheScaleWithoutAnyStart) {
   const io::LoadedDataset& d = office();
   const RobotLog log = first_scans(*d.log, 1200);
-  const DualLocalization r = localize_dual(d.plan_grid, d.gridmap, log, std::nullopt,
-                                           std::nullopt, {}, {}, &*d.plan);
+  const DualLocalization r =
+      localize_dual(d.plan_grid, d.gridmap, log, std::nullopt, std::nullopt, {}, {}, &*d.plan);
   ASSERT_TRUE(r.registration.has_value());
   // The two starts found are the same place: the exact warp takes the plan start onto the
   // gridmap start.
@@ -103,9 +103,9 @@ TEST(DualLocalizer, FindsBothStartsAndTheScaleWithoutAnyStart) {
 
 TEST(DualLocalizer, RejectsTooShortLogsAndBadScales) {
   const io::LoadedDataset& d = office();
-  EXPECT_THROW(localize_dual(d.plan_grid, d.gridmap, first_scans(*d.log, 1), std::nullopt,
-                             std::nullopt),
-               InputError);
+  EXPECT_THROW(
+      localize_dual(d.plan_grid, d.gridmap, first_scans(*d.log, 1), std::nullopt, std::nullopt),
+      InputError);
   EXPECT_THROW(localize_dual(d.plan_grid, d.gridmap, first_scans(*d.log, 10), std::nullopt, -1.0),
                InputError);
 }

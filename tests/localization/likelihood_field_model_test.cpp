@@ -146,13 +146,14 @@ TEST(LikelihoodField, LogLikelihoodIsTheSumOfHandComputedBeamTerms) {
 
   // A particle at (1.0, 2.0) facing +y: robot-frame (a, b) lies at map (1 - b, 2 + a).
   const ParticleSet particle = particles_at({{1.0, 2.0, kPi / 2}});
-  ScanObservation scan;
-  const auto add_endpoint = [&](double map_x, double map_y) {
-    scan.angle.push_back(0.0f);
-    scan.range.push_back(1.0f);
-    scan.end_x.push_back(static_cast<float>(map_y - 2.0));
-    scan.end_y.push_back(static_cast<float>(1.0 - map_x));
+  const auto add_to = [](ScanObservation& to, double map_x, double map_y) {
+    to.angle.push_back(0.0f);
+    to.range.push_back(1.0f);
+    to.end_x.push_back(static_cast<float>(map_y - 2.0));
+    to.end_y.push_back(static_cast<float>(1.0 - map_x));
   };
+  ScanObservation scan;
+  const auto add_endpoint = [&](double map_x, double map_y) { add_to(scan, map_x, map_y); };
   const double z_hit = 0.9, z_rand = 0.1, sigma = 0.1;
   const auto log_p = [&](double d) {
     return std::log(z_hit * std::exp(-d * d / (2 * sigma * sigma)) + z_rand);
@@ -192,12 +193,7 @@ TEST(LikelihoodField, LogLikelihoodIsTheSumOfHandComputedBeamTerms) {
   // Endpoints deep in unknown space (more than known_margin from every observed cell) are not
   // known either; with fewer than min_known_share known, the map cannot tell: NaN.
   ScanObservation far;
-  const auto add_far = [&](double map_x, double map_y) {
-    far.angle.push_back(0.0f);
-    far.range.push_back(1.0f);
-    far.end_x.push_back(static_cast<float>(map_y - 2.0));
-    far.end_y.push_back(static_cast<float>(1.0 - map_x));
-  };
+  const auto add_far = [&](double map_x, double map_y) { add_to(far, map_x, map_y); };
   add_far(2.525, 2.0125);  // on the wall: known
   for (int i = 0; i < 4; ++i)
     add_far(3.3 + 0.2 * i, 2.0);  // 0.75 m or more beyond the wall: unknown
