@@ -15,12 +15,9 @@ namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
+using test::quoted;
 using test::run_floorgrid;
 using test::TempDir;
-
-std::string quoted(const fs::path& p) {
-  return "'" + p.string() + "'";
-}
 
 json read_json(const fs::path& path) {
   std::ifstream in(path);

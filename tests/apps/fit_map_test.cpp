@@ -14,17 +14,11 @@ namespace floorgrid {
 namespace {
 
 namespace fs = std::filesystem;
+using test::quoted;
 using test::read_file;
 using test::run_floorgrid;
 using test::TempDir;
 using test::write_file;
-
-std::string quoted(const fs::path& p) {
-  std::string out = "'";
-  out += p.string();
-  out += '\'';
-  return out;
-}
 
 /// The truth: rotate by 0.5 rad, scale 1.1, shift (3, -2).
 Eigen::Vector2d truth(const Eigen::Vector2d& p) {

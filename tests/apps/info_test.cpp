@@ -10,15 +10,9 @@ namespace {
 
 using nlohmann::json;
 using test::data_path;
+using test::quoted;
 using test::run_command;
 using test::run_floorgrid;
-
-std::string quoted(const std::filesystem::path& p) {
-  std::string out = "'";  // appended, not chained: GCC 12 warns falsely on "'" + s + "'"
-  out += p.string();
-  out += '\'';
-  return out;
-}
 
 json info_json(const std::filesystem::path& path, const std::string& extra = "") {
   const auto run = run_floorgrid("info --json " + quoted(path) + " " + extra);

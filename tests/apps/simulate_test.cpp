@@ -17,17 +17,11 @@ namespace floorgrid {
 namespace {
 
 namespace fs = std::filesystem;
+using test::quoted;
 using test::read_file;
 using test::run_command;
 using test::run_floorgrid;
 using test::TempDir;
-
-std::string quoted(const fs::path& p) {
-  std::string out = "'";
-  out += p.string();
-  out += '\'';
-  return out;
-}
 
 void simulate_to(const std::string& preset, int seed, const fs::path& out) {
   const auto run = run_floorgrid("simulate --preset " + preset + " --seed " + std::to_string(seed) +

@@ -72,6 +72,13 @@ CommandResult run_command(const std::string& command) {
   return result;
 }
 
+std::string quoted(const std::filesystem::path& path) {
+  std::string out = "'";  // appended, not chained: GCC 12 warns falsely on "'" + s + "'"
+  out += path.string();
+  out += '\'';
+  return out;
+}
+
 CommandResult run_floorgrid(const std::string& args) {
   return run_command(std::string("'") + FLOORGRID_BINARY + "' " + args);
 }

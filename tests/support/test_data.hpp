@@ -37,6 +37,8 @@ struct CommandResult {
   std::string out;  ///< stdout
   std::string err;  ///< stderr
 };
+/// `path` in single quotes, for a shell command line.
+std::string quoted(const std::filesystem::path& path);
 /// Runs the built floorgrid binary with `args` (a shell-quoted argument string).
 CommandResult run_floorgrid(const std::string& args);
 /// Runs a shell command.
