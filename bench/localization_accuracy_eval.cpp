@@ -19,7 +19,7 @@
 #include "floorgrid/io/carmen_writer.hpp"
 #include "floorgrid/io/dataset_loader.hpp"
 #include "floorgrid/io/image_io.hpp"
-#include "floorgrid/localization/dual_localizer.hpp"
+#include "floorgrid/pipeline/dual_localizer.hpp"
 
 using namespace floorgrid;
 

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "floorgrid/core/random.hpp"
-#include "floorgrid/mapping/ransac.hpp"
+#include "floorgrid/geometry/ransac.hpp"
 
 #ifdef FLOORGRID_HAVE_OPENCV_CALIB3D
 #include <opencv2/calib3d.hpp>

@@ -35,7 +35,11 @@ void run_align(const std::string& dataset, const std::string& out, std::uint64_t
                                dataset_log(d),
                                start_poses(d),
                                d.manifest.floorplan_scale,
-                               d.truth_warp ? &*d.truth_warp : nullptr,
+                               d.truth_warp
+                                   ? GroundTruth([&warp = *d.truth_warp](const Eigen::Vector2d& p) {
+                                       return warp.plan_to_grid(p);
+                                     })
+                                   : GroundTruth{},
                                d.manual_pairs ? &*d.manual_pairs : nullptr};
   AlignmentOptions options;
   options.localization.seed = seed;

@@ -2,7 +2,7 @@
 
 #include <optional>
 
-#include "floorgrid/evaluation/alignment.hpp"
+#include "floorgrid/pipeline/align.hpp"
 
 namespace floorgrid::app {
 

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "floorgrid/evaluation/alignment.hpp"
+#include "floorgrid/pipeline/align.hpp"
 
 namespace floorgrid::io {
 

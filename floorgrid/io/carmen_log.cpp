@@ -196,7 +196,7 @@ void record_config(RobotLogSummary& summary, const LaserScan& scan, const Resolv
 // One laser message: parsed, its settings resolved, kept or skipped by its timestamp.
 void read_laser(std::string_view type, FieldCursor& fields, std::size_t line,
                 const ParamState& params, const LaserSettings& manifest, TypeTrack& track,
-                RobotLog& log) {
+                RobotLog& log, RobotLogSummary& summary) {
   const bool old_style = is_old_laser_type(type);
   LaserScan scan = old_style ? parse_old_laser(fields) : parse_robot_laser(fields);
   scan.type = std::string(type);
@@ -212,11 +212,11 @@ void read_laser(std::string_view type, FieldCursor& fields, std::size_t line,
   scan.angle_increment = used.angle_increment.value;
   scan.max_range = used.max_range.value;
   scan.min_range = used.min_range.value;
-  record_config(log.summary, scan, used);
+  record_config(summary, scan, used);
   log.scans.push_back(std::move(scan));
 }
 
-void summarize_time(RobotLog& log) {
+void summarize_time(const RobotLog& log, RobotLogSummary& summary) {
   double first = std::numeric_limits<double>::infinity();
   double last = -std::numeric_limits<double>::infinity();
   for (const OdometryReading& odometry : log.odometry) {
@@ -227,18 +227,20 @@ void summarize_time(RobotLog& log) {
     first = std::min(first, scan.timestamp);
     last = std::max(last, scan.timestamp);
   }
-  log.summary.first_timestamp = first;
-  log.summary.last_timestamp = last;
-  log.summary.duration = last - first;
+  summary.first_timestamp = first;
+  summary.last_timestamp = last;
+  summary.duration = last - first;
 }
 
 }  // namespace
 
-RobotLog read_carmen(const std::filesystem::path& path, const CarmenReadOptions& options) {
+CarmenLog read_carmen_log(const std::filesystem::path& path, const CarmenReadOptions& options) {
   validate_laser_settings(options.laser);
   LineReader reader(path);
-  RobotLog log;
-  log.summary.source = reader.file();
+  CarmenLog result;
+  RobotLog& log = result;
+  RobotLogSummary& summary = result.summary;
+  summary.source = reader.file();
   ParamState params;
   TypeTracks tracks;
 
@@ -274,11 +276,11 @@ RobotLog read_carmen(const std::filesystem::path& path, const CarmenReadOptions&
       if (keep_timestamp(track, odometry.timestamp))
         log.odometry.push_back(odometry);
     } else if (is_old_laser_type(type) || is_robot_laser_type(type)) {
-      read_laser(type, fields, number, params, options.laser, track, log);
+      read_laser(type, fields, number, params, options.laser, track, log, summary);
     } else if (type == "PARAM") {
       const std::string_view name = fields.word("name");
       const std::string_view value = fields.word("value");
-      log.summary.params[std::string(name)] = std::string(value);
+      summary.params[std::string(name)] = std::string(value);
       apply_param(name, value, fields, params);
       ++track.count.not_data;
     } else {
@@ -286,18 +288,22 @@ RobotLog read_carmen(const std::filesystem::path& path, const CarmenReadOptions&
     }
   }
 
-  log.summary.lines = reader.line_number();
+  summary.lines = reader.line_number();
   for (auto& [type, track] : tracks)
-    log.summary.messages[type] = track.count;
+    summary.messages[type] = track.count;
   if (log.scans.empty()) {
     throw InputError(
         "no laser scan (FLASER, RLASER, ROBOTLASER1) with a valid timestamp in the log: "
         "nothing to localize with",
-        reader.file(), static_cast<long>(log.summary.lines));
+        reader.file(), static_cast<long>(summary.lines));
   }
-  log.summary.ranges = count_ranges(log.scans);
-  summarize_time(log);
-  return log;
+  summary.ranges = count_ranges(log.scans);
+  summarize_time(log, summary);
+  return result;
+}
+
+RobotLog read_carmen(const std::filesystem::path& path, const CarmenReadOptions& options) {
+  return std::move(read_carmen_log(path, options));
 }
 
 }  // namespace floorgrid::io

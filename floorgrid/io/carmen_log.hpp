@@ -2,7 +2,8 @@
 
 #include <filesystem>
 
-#include "floorgrid/localization/robot_log.hpp"
+#include "floorgrid/io/robot_log_summary.hpp"
+#include "floorgrid/robot/robot_log.hpp"
 
 namespace floorgrid::io {
 
@@ -11,6 +12,11 @@ struct CarmenReadOptions {
   /// Laser settings from the dataset manifest (`laser:`); each one given overrides the log's
   /// PARAMs, a ROBOTLASER1's own fields and CARMEN's guesses, for every scan.
   LaserSettings laser;
+};
+
+/// A CARMEN log read: the run, and how it was read.
+struct CarmenLog : RobotLog {
+  RobotLogSummary summary;  ///< counts and settings used
 };
 
 /// Reads a CARMEN text log, plain or gzip-compressed (told by content, not by name).
@@ -37,6 +43,9 @@ struct CarmenReadOptions {
 /// a line is truncated or has extra fields, a number is malformed, a beam count is not in
 /// 1..100000, a gzip stream is corrupt or ends early, a used PARAM is not a positive number, or
 /// the log has no laser scan to localize with.
+CarmenLog read_carmen_log(const std::filesystem::path& path, const CarmenReadOptions& options = {});
+
+/// read_carmen_log without the summary.
 RobotLog read_carmen(const std::filesystem::path& path, const CarmenReadOptions& options = {});
 
 }  // namespace floorgrid::io

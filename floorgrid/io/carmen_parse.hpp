@@ -4,7 +4,7 @@
 #include <string>
 #include <string_view>
 
-#include "floorgrid/localization/robot_log.hpp"
+#include "floorgrid/io/robot_log_summary.hpp"
 
 namespace floorgrid::io {
 

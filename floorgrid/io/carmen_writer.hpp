@@ -3,7 +3,7 @@
 #include <filesystem>
 #include <string>
 
-#include "floorgrid/localization/robot_log.hpp"
+#include "floorgrid/robot/robot_log.hpp"
 
 namespace floorgrid::io {
 

@@ -7,8 +7,8 @@
 #include "floorgrid/io/map_io.hpp"
 #include "floorgrid/io/pairs_csv.hpp"
 #include "floorgrid/io/truth_json.hpp"
-#include "floorgrid/localization/odometry_noise.hpp"
 #include "floorgrid/maps/rasterize.hpp"
+#include "floorgrid/robot/odometry_noise.hpp"
 
 namespace floorgrid::io {
 

@@ -4,12 +4,12 @@
 #include <string>
 #include <vector>
 
+#include "floorgrid/geometry/reference_pairs.hpp"
 #include "floorgrid/io/dataset_manifest.hpp"
 #include "floorgrid/io/dxf_reader.hpp"
-#include "floorgrid/localization/robot_log.hpp"
-#include "floorgrid/mapping/reference_pairs.hpp"
 #include "floorgrid/maps/occupancy_grid.hpp"
 #include "floorgrid/maps/vector_floorplan.hpp"
+#include "floorgrid/robot/robot_log.hpp"
 #include "floorgrid/simulation/plan_truth.hpp"
 
 namespace floorgrid::io {

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "floorgrid/geometry/pose2.hpp"
-#include "floorgrid/localization/robot_log.hpp"
+#include "floorgrid/io/robot_log_summary.hpp"
 
 namespace floorgrid::io {
 

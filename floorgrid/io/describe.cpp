@@ -102,7 +102,7 @@ json setting_json(const UsedSetting& s, double factor) {
 }
 
 json describe_log(const std::filesystem::path& path, const CarmenReadOptions& options = {}) {
-  const RobotLog log = read_carmen(path, options);
+  const CarmenLog log = read_carmen_log(path, options);
   const RobotLogSummary& s = log.summary;
   json messages = json::object();
   std::vector<std::string> unknown_types;

@@ -2,7 +2,7 @@
 
 #include <filesystem>
 
-#include "floorgrid/mapping/reference_pairs.hpp"
+#include "floorgrid/geometry/reference_pairs.hpp"
 
 namespace floorgrid::io {
 

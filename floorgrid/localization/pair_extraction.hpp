@@ -5,9 +5,9 @@
 #include <vector>
 
 #include "floorgrid/core/random.hpp"
-#include "floorgrid/localization/robot_log.hpp"
+#include "floorgrid/geometry/reference_pairs.hpp"
 #include "floorgrid/localization/wall_field.hpp"
-#include "floorgrid/mapping/reference_pairs.hpp"
+#include "floorgrid/robot/robot_log.hpp"
 
 namespace floorgrid {
 

@@ -10,13 +10,13 @@
 #include "floorgrid/core/random.hpp"
 #include "floorgrid/localization/convergence.hpp"
 #include "floorgrid/localization/divergence.hpp"
-#include "floorgrid/localization/motion_model.hpp"
 #include "floorgrid/localization/observation_model.hpp"
 #include "floorgrid/localization/particle_initialization.hpp"
 #include "floorgrid/localization/particles.hpp"
 #include "floorgrid/localization/pose_estimate.hpp"
 #include "floorgrid/localization/scan_observation.hpp"
 #include "floorgrid/maps/occupancy_grid.hpp"
+#include "floorgrid/robot/motion_model.hpp"
 
 namespace floorgrid {
 

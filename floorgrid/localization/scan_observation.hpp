@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "floorgrid/geometry/pose2.hpp"
-#include "floorgrid/localization/robot_log.hpp"
+#include "floorgrid/robot/robot_log.hpp"
 
 namespace floorgrid {
 

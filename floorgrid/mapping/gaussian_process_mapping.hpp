@@ -2,9 +2,9 @@
 
 #include <optional>
 
+#include "floorgrid/geometry/ransac.hpp"
 #include "floorgrid/mapping/gaussian_process.hpp"
 #include "floorgrid/mapping/point_mapping.hpp"
-#include "floorgrid/mapping/ransac.hpp"
 
 namespace floorgrid {
 

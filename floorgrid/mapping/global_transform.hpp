@@ -1,7 +1,7 @@
 #pragma once
 
+#include "floorgrid/geometry/ransac.hpp"
 #include "floorgrid/mapping/point_mapping.hpp"
-#include "floorgrid/mapping/ransac.hpp"
 
 namespace floorgrid {
 

@@ -4,12 +4,12 @@
 #include <string>
 #include <vector>
 
+#include "floorgrid/geometry/ransac.hpp"
 #include "floorgrid/mapping/gaussian_process.hpp"
 #include "floorgrid/mapping/linear_combination.hpp"
 #include "floorgrid/mapping/local_transforms.hpp"
 #include "floorgrid/mapping/model_selection.hpp"
 #include "floorgrid/mapping/point_mapping.hpp"
-#include "floorgrid/mapping/ransac.hpp"
 #include "floorgrid/mapping/thin_plate_spline_mapping.hpp"
 
 namespace floorgrid {

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "floorgrid/mapping/reference_pairs.hpp"
+#include "floorgrid/geometry/reference_pairs.hpp"
 
 namespace floorgrid {
 

@@ -11,8 +11,8 @@
 #include "floorgrid/geometry/convex_hull.hpp"
 #include "floorgrid/geometry/point_index.hpp"
 #include "floorgrid/geometry/pose2.hpp"
+#include "floorgrid/geometry/reference_pairs.hpp"
 #include "floorgrid/mapping/pair_preparation.hpp"
-#include "floorgrid/mapping/reference_pairs.hpp"
 
 namespace floorgrid {
 

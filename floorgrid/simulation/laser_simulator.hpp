@@ -7,7 +7,7 @@
 
 #include "floorgrid/core/random.hpp"
 #include "floorgrid/geometry/pose2.hpp"
-#include "floorgrid/localization/robot_log.hpp"
+#include "floorgrid/robot/robot_log.hpp"
 #include "floorgrid/simulation/segment_ray_caster.hpp"
 
 namespace floorgrid {

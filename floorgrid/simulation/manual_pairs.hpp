@@ -3,7 +3,7 @@
 #include <vector>
 
 #include "floorgrid/core/random.hpp"
-#include "floorgrid/mapping/reference_pairs.hpp"
+#include "floorgrid/geometry/reference_pairs.hpp"
 #include "floorgrid/maps/occupancy_grid.hpp"
 #include "floorgrid/simulation/plan_truth.hpp"
 

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "floorgrid/localization/motion_model.hpp"
+#include "floorgrid/robot/motion_model.hpp"
 #include "floorgrid/simulation/robot_tour.hpp"
 
 namespace floorgrid {

@@ -5,8 +5,8 @@
 #include <numbers>
 
 #include "floorgrid/core/error.hpp"
-#include "floorgrid/localization/motion_model.hpp"
 #include "floorgrid/maps/plan_units.hpp"
+#include "floorgrid/robot/motion_model.hpp"
 #include "floorgrid/simulation/arc_bend.hpp"
 #include "floorgrid/simulation/laser_simulator.hpp"
 #include "floorgrid/simulation/manual_pairs.hpp"

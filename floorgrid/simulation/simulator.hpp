@@ -4,10 +4,10 @@
 #include <string>
 #include <vector>
 
-#include "floorgrid/localization/robot_log.hpp"
-#include "floorgrid/mapping/reference_pairs.hpp"
+#include "floorgrid/geometry/reference_pairs.hpp"
 #include "floorgrid/maps/occupancy_grid.hpp"
 #include "floorgrid/maps/vector_floorplan.hpp"
+#include "floorgrid/robot/robot_log.hpp"
 #include "floorgrid/simulation/building.hpp"
 #include "floorgrid/simulation/plan_truth.hpp"
 #include "floorgrid/simulation/robot_tour.hpp"

@@ -42,15 +42,15 @@ std::string odom(const std::string& pose, const std::string& timestamp) {
   return "ODOM " + pose + " 0 0 0 " + timestamp + " testhost " + timestamp + "\n";
 }
 
-RobotLog read_text(const TempDir& dir, const std::string& text,
-                   const CarmenReadOptions& options = {}) {
+CarmenLog read_text(const TempDir& dir, const std::string& text,
+                    const CarmenReadOptions& options = {}) {
   write_file(dir / "test.log", text);
-  return read_carmen(dir / "test.log", options);
+  return read_carmen_log(dir / "test.log", options);
 }
 
 TEST(CarmenLogTest, ReadsOdometryFields) {
   TempDir dir;
-  const RobotLog log =
+  const CarmenLog log =
       read_text(dir, "ODOM 1.25 -2.5 0.75 0.3 -0.1 0.05 100.5 merci 100.6\n" + flaser_of(3, "101"));
   ASSERT_EQ(log.odometry.size(), 1u);
   const OdometryReading& odometry = log.odometry[0];
@@ -66,7 +66,7 @@ TEST(CarmenLogTest, ReadsOdometryFields) {
 
 TEST(CarmenLogTest, ReadsFlaserWithParamSettings) {
   TempDir dir;
-  const RobotLog log =
+  const CarmenLog log =
       read_text(dir,
                 "# a comment\n"
                 "PARAM laser_front_laser_resolution 1.0 0 h 0\n"
@@ -111,10 +111,10 @@ TEST(CarmenLogTest, ReadsFlaserWithParamSettings) {
 
 TEST(CarmenLogTest, LaserMaxrangeParamBeatsRobotFrontLaserMax) {
   TempDir dir;
-  const RobotLog log = read_text(dir,
-                                 "PARAM laser_front_laser_maxrange 30 0 h 0\n"
-                                 "PARAM robot_front_laser_max 10 0 h 0\n" +
-                                     flaser_of(3, "1"));
+  const CarmenLog log = read_text(dir,
+                                  "PARAM laser_front_laser_maxrange 30 0 h 0\n"
+                                  "PARAM robot_front_laser_max 10 0 h 0\n" +
+                                      flaser_of(3, "1"));
   EXPECT_EQ(log.scans[0].max_range, 30.0);
   EXPECT_EQ(log.summary.laser_configs[0].max_range.detail, "laser_front_laser_maxrange");
 }
@@ -127,7 +127,7 @@ TEST(CarmenLogTest, GuessesIncrementFromBeamCountAsCarmenDoes) {
   std::string text;
   for (std::size_t i = 0; i < beams.size(); ++i)
     text += flaser_of(beams[i], std::to_string(i + 1));
-  const RobotLog log = read_text(dir, text);
+  const CarmenLog log = read_text(dir, text);
   ASSERT_EQ(log.scans.size(), beams.size());
   for (std::size_t i = 0; i < beams.size(); ++i) {
     EXPECT_EQ(log.scans[i].ranges.size(), beams[i]);
@@ -151,13 +151,13 @@ TEST(CarmenLogTest, ManifestOverridesParamsMessagesAndGuesses) {
   options.laser.min_range = 0.1;
   options.laser.start_angle = -1.0;
   options.laser.angle_increment = 0.01;
-  const RobotLog log = read_text(dir,
-                                 "PARAM laser_front_laser_resolution 1.0 0 h 0\n"
-                                 "PARAM robot_front_laser_max 10 0 h 0\n" +
-                                     flaser_of(3, "1") +
-                                     "ROBOTLASER1 0 -2.0 3.0 0.015 30.0 0.01 0 2 1.0 2.0 0 "
-                                     "0 0 0 0 0 0 0 0 0 0 0 2 h 2\n",
-                                 options);
+  const CarmenLog log = read_text(dir,
+                                  "PARAM laser_front_laser_resolution 1.0 0 h 0\n"
+                                  "PARAM robot_front_laser_max 10 0 h 0\n" +
+                                      flaser_of(3, "1") +
+                                      "ROBOTLASER1 0 -2.0 3.0 0.015 30.0 0.01 0 2 1.0 2.0 0 "
+                                      "0 0 0 0 0 0 0 0 0 0 0 2 h 2\n",
+                                  options);
   ASSERT_EQ(log.scans.size(), 2u);
   for (const LaserScan& scan : log.scans) {
     EXPECT_EQ(scan.max_range, 5.0);
@@ -176,7 +176,7 @@ TEST(CarmenLogTest, ManifestOverridesParamsMessagesAndGuesses) {
 
 TEST(CarmenLogTest, RearLaserUsesRearParamsAndKeepsItsBackwardPose) {
   TempDir dir;
-  const RobotLog log = read_text(
+  const CarmenLog log = read_text(
       dir,
       "PARAM laser_front_laser_resolution 1.0 0 h 0\n"
       "PARAM laser_rear_laser_resolution 0.25 0 h 0\n"
@@ -196,10 +196,10 @@ TEST(CarmenLogTest, RobotLaser1UsesItsOwnSettings) {
   TempDir dir;
   // laser_type start fov resolution maxrange accuracy remission_mode n r1 r2 r3 m rem1 rem2
   // laser pose, robot pose, tv rv forward side turn_axis, timestamp host logger_timestamp
-  const RobotLog log = read_text(dir,
-                                 "PARAM laser_front_laser_resolution 1.0 0 h 0\n"
-                                 "ROBOTLASER1 0 -2.0 3.0 0.015 30.0 0.01 1 3 1.0 30.0 2.5 2 "
-                                 "7 8 0.1 0.2 0.3 1.0 2.0 0.25 0.5 0.6 0.7 0.8 0.9 12.5 h 12.6\n");
+  const CarmenLog log = read_text(dir,
+                                  "PARAM laser_front_laser_resolution 1.0 0 h 0\n"
+                                  "ROBOTLASER1 0 -2.0 3.0 0.015 30.0 0.01 1 3 1.0 30.0 2.5 2 "
+                                  "7 8 0.1 0.2 0.3 1.0 2.0 0.25 0.5 0.6 0.7 0.8 0.9 12.5 h 12.6\n");
   ASSERT_EQ(log.scans.size(), 1u);
   const LaserScan& scan = log.scans[0];
   EXPECT_EQ(scan.type, "ROBOTLASER1");
@@ -219,18 +219,18 @@ TEST(CarmenLogTest, RobotLaser1UsesItsOwnSettings) {
 
 TEST(CarmenLogTest, SkipsAndCountsOtherLinesByType) {
   TempDir dir;
-  const RobotLog log = read_text(dir,
-                                 "# message formats defined: PARAM ODOM FLASER\n"
-                                 "#another\n"
-                                 "\n"
-                                 "   \t \n"
-                                 "PARAM robot_use_laser on nohost 0\n"
-                                 "NEFF 10\n"
-                                 "NEFF 27.6 0 pippo 0\n"
-                                 "SYNC tag\n"
-                                 "TRUEPOS 1 2 3 4 5 6 1.0 h 1.0\n"
-                                 "RAWLASER1 0 -1.5 3.1 0.01 50 0.01 0 1 2.0 0 1.0 h 1.0\n" +
-                                     odom("0 0 0", "1") + flaser_of(2, "1"));
+  const CarmenLog log = read_text(dir,
+                                  "# message formats defined: PARAM ODOM FLASER\n"
+                                  "#another\n"
+                                  "\n"
+                                  "   \t \n"
+                                  "PARAM robot_use_laser on nohost 0\n"
+                                  "NEFF 10\n"
+                                  "NEFF 27.6 0 pippo 0\n"
+                                  "SYNC tag\n"
+                                  "TRUEPOS 1 2 3 4 5 6 1.0 h 1.0\n"
+                                  "RAWLASER1 0 -1.5 3.1 0.01 50 0.01 0 1 2.0 0 1.0 h 1.0\n" +
+                                      odom("0 0 0", "1") + flaser_of(2, "1"));
   const auto& messages = log.summary.messages;
   EXPECT_EQ(log.summary.lines, 12u);
   EXPECT_EQ(messages.at("#").lines, 2u);
@@ -249,7 +249,7 @@ TEST(CarmenLogTest, SkipsAndCountsOtherLinesByType) {
 
 TEST(CarmenLogTest, SkipsZeroAndBackwardsTimestampsPerTypeAndKeepsEqualOnes) {
   TempDir dir;
-  const RobotLog log =
+  const CarmenLog log =
       read_text(dir, odom("1 0 0", "1") + odom("2 0 0", "0") + odom("3 0 0", "2") +
                          flaser_of(2, "1.0") + odom("4 0 0", "1.5") + odom("5 0 0", "2") +
                          flaser_of(2, "0.5") + odom("6 0 0", "-3") + flaser_of(2, "1.0") +
@@ -277,7 +277,7 @@ TEST(CarmenLogTest, ClassifiesEveryRangeReading) {
   TempDir dir;
   CarmenReadOptions options;
   options.laser.min_range = 0.05;
-  const RobotLog log = read_text(
+  const CarmenLog log = read_text(
       dir,
       "PARAM robot_front_laser_max 10 0 h 0\n" +
           flaser({"1", "10", "12", "nan", "-1", "0", "0.01", "inf", "9.99"}, "0 0 0 0 0 0", "1"),
@@ -301,17 +301,17 @@ TEST(CarmenLogTest, ClassifiesEveryRangeReading) {
 TEST(CarmenLogTest, ReadingPrintedAsTheMaxRangeIsNoReturn) {
   TempDir dir;
   // float(80.99) < 80.99 as doubles: readings are compared at their own precision.
-  const RobotLog log = read_text(dir, "PARAM robot_front_laser_max 80.99 0 h 0\n" +
-                                          flaser({"80.99", "80.98"}, "0 0 0 0 0 0", "1"));
+  const CarmenLog log = read_text(dir, "PARAM robot_front_laser_max 80.99 0 h 0\n" +
+                                           flaser({"80.99", "80.98"}, "0 0 0 0 0 0", "1"));
   EXPECT_EQ(log.scans[0].range_kind(0), RangeKind::no_return);
   EXPECT_EQ(log.scans[0].range_kind(1), RangeKind::hit);
 }
 
 TEST(CarmenLogTest, ToleratesCrLfTabsAndPlusSigns) {
   TempDir dir;
-  const RobotLog log = read_text(dir,
-                                 "ODOM\t+1.5  2 3 0 0 0\t5.25 h 5.25\r\n"
-                                 "FLASER 2 +1 2e0 0 0 0 0 0 0 5.5 h 5.5\r\n");
+  const CarmenLog log = read_text(dir,
+                                  "ODOM\t+1.5  2 3 0 0 0\t5.25 h 5.25\r\n"
+                                  "FLASER 2 +1 2e0 0 0 0 0 0 0 5.5 h 5.5\r\n");
   ASSERT_EQ(log.odometry.size(), 1u);
   EXPECT_EQ(log.odometry[0].pose.x, 1.5);
   EXPECT_EQ(log.odometry[0].timestamp, 5.25);
@@ -327,8 +327,8 @@ TEST(CarmenLogTest, GzipLogReadsLikeThePlainOne) {
   }
   write_file(dir / "run.log", text);
   ASSERT_EQ(run_command("gzip -kf '" + (dir / "run.log").string() + "'").status, 0);
-  const RobotLog plain = read_carmen(dir / "run.log");
-  const RobotLog packed = read_carmen(dir / "run.log.gz");
+  const CarmenLog plain = read_carmen_log(dir / "run.log");
+  const CarmenLog packed = read_carmen_log(dir / "run.log.gz");
   ASSERT_EQ(packed.scans.size(), 300u);
   ASSERT_EQ(packed.odometry.size(), 300u);
   for (std::size_t i = 0; i < 300; ++i) {
@@ -362,12 +362,12 @@ void expect_located(const InputError& error, const std::filesystem::path& file, 
 
 InputError read_bad(const TempDir& dir, const std::string& text) {
   write_file(dir / "bad.log", text);
-  return catch_input_error([&] { read_carmen(dir / "bad.log"); });
+  return catch_input_error([&] { read_carmen_log(dir / "bad.log"); });
 }
 
 TEST(CarmenLogErrorTest, MissingFileNamesIt) {
   TempDir dir;
-  const InputError error = catch_input_error([&] { read_carmen(dir / "missing.log.gz"); });
+  const InputError error = catch_input_error([&] { read_carmen_log(dir / "missing.log.gz"); });
   EXPECT_EQ(error.file(), (dir / "missing.log.gz").string());
   EXPECT_NE(std::string(error.what()).find("no such file"), std::string::npos);
 }
@@ -443,7 +443,7 @@ TEST(CarmenLogErrorTest, TruncatedGzipLogNamesTheLineReached) {
   write_file(dir / "cut.log.gz", bytes.substr(0, bytes.size() * 2 / 3));
   const long complete = std::stol(
       run_command("zcat '" + (dir / "cut.log.gz").string() + "' 2>/dev/null | wc -l").out);
-  const InputError error = catch_input_error([&] { read_carmen(dir / "cut.log.gz"); });
+  const InputError error = catch_input_error([&] { read_carmen_log(dir / "cut.log.gz"); });
   expect_located(error, dir / "cut.log.gz", complete + 1, "");
 }
 
@@ -483,11 +483,11 @@ TEST(CarmenLogErrorTest, BadManifestSettingNamesTheField) {
   write_file(dir / "ok.log", flaser_of(2, "1"));
   CarmenReadOptions options;
   options.laser.max_range = -1.0;
-  const InputError error = catch_input_error([&] { read_carmen(dir / "ok.log", options); });
+  const InputError error = catch_input_error([&] { read_carmen_log(dir / "ok.log", options); });
   EXPECT_EQ(error.field(), "laser.max_range");
   options.laser.max_range = 10.0;
   options.laser.min_range = 20.0;
-  EXPECT_EQ(catch_input_error([&] { read_carmen(dir / "ok.log", options); }).field(),
+  EXPECT_EQ(catch_input_error([&] { read_carmen_log(dir / "ok.log", options); }).field(),
             "laser.min_range");
 }
 
@@ -524,7 +524,7 @@ TimestampTruth timestamp_truth(const std::filesystem::path& file, const std::str
   return truth;
 }
 
-void expect_counts_match(const RobotLog& log, const std::string& type, const TimestampTruth& truth,
+void expect_counts_match(const CarmenLog& log, const std::string& type, const TimestampTruth& truth,
                          long grep_lines) {
   const MessageTypeCount& count = log.summary.messages.at(type);
   EXPECT_EQ(static_cast<long>(count.lines), grep_lines) << type;
@@ -545,7 +545,7 @@ long ranges_at_or_above(const std::filesystem::path& file, double max_range) {
 TEST(CarmenRealLogTest, Fr079Has4791ScansOf360BeamsAtHalfADegree) {
   FLOORGRID_REQUIRE_DATA("fr079/freiburg-079-corrected.log.gz");
   const auto file = data_path("fr079/freiburg-079-corrected.log.gz");
-  const RobotLog log = read_carmen(file);  // speed is measured in bench/, not here
+  const CarmenLog log = read_carmen_log(file);  // speed is measured in bench/, not here
 
   const long flaser_lines = grep_count(file, "^FLASER ");
   EXPECT_EQ(flaser_lines, 4791);
@@ -601,7 +601,7 @@ TEST(CarmenRealLogTest, Fr079Has4791ScansOf360BeamsAtHalfADegree) {
 TEST(CarmenRealLogTest, AcesHas440ScansOf180BeamsAtOneDegreeByGuess) {
   FLOORGRID_REQUIRE_DATA("carmen/aces-corrected.log.gz");
   const auto file = data_path("carmen/aces-corrected.log.gz");
-  const RobotLog log = read_carmen(file);
+  const CarmenLog log = read_carmen_log(file);
   EXPECT_EQ(grep_count(file, "^FLASER "), 440);
   EXPECT_EQ(log.scans.size(), 440u);
   EXPECT_EQ(count_of("zcat '" + file.string() + "' | awk '$1==\"FLASER\" && $2==180' | wc -l"),
@@ -624,7 +624,7 @@ TEST(CarmenRealLogTest, AcesHas440ScansOf180BeamsAtOneDegreeByGuess) {
   // So its manifest must say 50 m: then the saturated readings are no-returns.
   CarmenReadOptions options;
   options.laser.max_range = 50.0;
-  const RobotLog capped = read_carmen(file, options);
+  const CarmenLog capped = read_carmen_log(file, options);
   EXPECT_EQ(static_cast<long>(capped.summary.ranges.no_return), ranges_at_or_above(file, 50.0));
   EXPECT_GT(capped.summary.ranges.no_return, 0u);
   EXPECT_EQ(capped.summary.laser_configs[0].max_range.source, SettingSource::manifest);
@@ -633,7 +633,7 @@ TEST(CarmenRealLogTest, AcesHas440ScansOf180BeamsAtOneDegreeByGuess) {
 TEST(CarmenRealLogTest, CsailHas406ScansOf361BeamsAndKeepsEqualTimestamps) {
   FLOORGRID_REQUIRE_DATA("carmen/csail-corrected.log.gz");
   const auto file = data_path("carmen/csail-corrected.log.gz");
-  const RobotLog log = read_carmen(file);
+  const CarmenLog log = read_carmen_log(file);
   EXPECT_EQ(grep_count(file, "^FLASER "), 406);
   EXPECT_EQ(log.scans.size(), 406u);
   EXPECT_EQ(count_of("zcat '" + file.string() + "' | awk '$1==\"FLASER\" && $2==361' | wc -l"),

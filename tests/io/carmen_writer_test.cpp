@@ -195,9 +195,9 @@ TEST(CarmenWriterTest, OutputFollowsCarmensTextFormat) {
 TEST(CarmenWriterTest, RoundTripOfTheFr079LogIsExact) {
   FLOORGRID_REQUIRE_DATA("fr079/freiburg-079-corrected.log.gz");
   TempDir dir;
-  const RobotLog original = read_carmen(data_path("fr079/freiburg-079-corrected.log.gz"));
+  const CarmenLog original = read_carmen_log(data_path("fr079/freiburg-079-corrected.log.gz"));
   write_carmen(original, dir / "copy.log.gz");
-  const RobotLog copy = read_carmen(dir / "copy.log.gz");
+  const CarmenLog copy = read_carmen_log(dir / "copy.log.gz");
   expect_same_log(original, copy);
   EXPECT_EQ(copy.summary.messages.at("ODOM").kept, original.odometry.size());
   EXPECT_EQ(copy.summary.messages.at("ODOM").skipped_zero_timestamp, 0u);

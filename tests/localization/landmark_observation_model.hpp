@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "floorgrid/core/random.hpp"
-#include "floorgrid/localization/motion_model.hpp"
 #include "floorgrid/localization/observation_model.hpp"
+#include "floorgrid/robot/motion_model.hpp"
 
 namespace floorgrid::test {
 

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <numbers>
 
-#include "floorgrid/localization/odometry_noise.hpp"
 #include "floorgrid/maps/rasterize.hpp"
+#include "floorgrid/robot/odometry_noise.hpp"
 
 namespace floorgrid {
 namespace {

@@ -8,7 +8,7 @@
 #include <numbers>
 
 #include "floorgrid/core/random.hpp"
-#include "floorgrid/mapping/reference_pairs.hpp"
+#include "floorgrid/geometry/reference_pairs.hpp"
 
 namespace floorgrid::test {
 

@@ -3,7 +3,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "floorgrid/mapping/reference_pairs.hpp"
+#include "floorgrid/geometry/reference_pairs.hpp"
 
 namespace floorgrid {
 

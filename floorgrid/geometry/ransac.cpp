@@ -1,4 +1,4 @@
-#include "floorgrid/mapping/ransac.hpp"
+#include "floorgrid/geometry/ransac.hpp"
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -9,7 +9,7 @@
 
 #include "floorgrid/core/error.hpp"
 #include "floorgrid/core/random.hpp"
-#include "floorgrid/mapping/inlier_classification.hpp"
+#include "floorgrid/geometry/inlier_classification.hpp"
 
 namespace floorgrid {
 namespace {

@@ -7,16 +7,16 @@
 #include <vector>
 
 #include "floorgrid/localization/beam_model.hpp"
-#include "floorgrid/localization/filter_runner.hpp"
 #include "floorgrid/localization/likelihood_field_model.hpp"
-#include "floorgrid/localization/outlier_scans.hpp"
 #include "floorgrid/localization/pair_extraction.hpp"
 #include "floorgrid/localization/particle_filter.hpp"
-#include "floorgrid/localization/plan_registration.hpp"
-#include "floorgrid/localization/robot_log.hpp"
 #include "floorgrid/maps/occupancy_grid.hpp"
 #include "floorgrid/maps/vector_floorplan.hpp"
 #include "floorgrid/maps/visible_walls.hpp"
+#include "floorgrid/pipeline/filter_runner.hpp"
+#include "floorgrid/pipeline/outlier_scans.hpp"
+#include "floorgrid/pipeline/plan_registration.hpp"
+#include "floorgrid/robot/robot_log.hpp"
 
 namespace floorgrid {
 

@@ -8,9 +8,9 @@
 #include "floorgrid/geometry/pose2.hpp"
 #include "floorgrid/localization/observation_model.hpp"
 #include "floorgrid/localization/particle_initialization.hpp"
-#include "floorgrid/localization/robot_log.hpp"
 #include "floorgrid/localization/scan_observation.hpp"
 #include "floorgrid/maps/occupancy_grid.hpp"
+#include "floorgrid/robot/robot_log.hpp"
 
 namespace floorgrid {
 

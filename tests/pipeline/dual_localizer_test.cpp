@@ -1,6 +1,6 @@
 // The dual localization on a simulated building, run through the library: a wrong start is
 // caught, NaN readings are harmless, and the plan is found without any start.
-#include "floorgrid/localization/dual_localizer.hpp"
+#include "floorgrid/pipeline/dual_localizer.hpp"
 
 #include <gtest/gtest.h>
 

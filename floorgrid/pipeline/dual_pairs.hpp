@@ -1,6 +1,6 @@
 #pragma once
 
-#include "floorgrid/localization/dual_localizer.hpp"
+#include "floorgrid/pipeline/dual_localizer.hpp"
 
 namespace floorgrid {
 

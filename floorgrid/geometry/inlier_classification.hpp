@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "floorgrid/geometry/reference_pairs.hpp"
 #include "floorgrid/geometry/transform_estimation.hpp"
-#include "floorgrid/mapping/reference_pairs.hpp"
 
 namespace floorgrid {
 

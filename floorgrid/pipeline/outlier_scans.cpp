@@ -1,12 +1,12 @@
-#include "floorgrid/localization/outlier_scans.hpp"
+#include "floorgrid/pipeline/outlier_scans.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <map>
 
+#include "floorgrid/geometry/ransac.hpp"
 #include "floorgrid/localization/pair_extraction.hpp"
-#include "floorgrid/mapping/ransac.hpp"
 
 namespace floorgrid {
 

@@ -2,8 +2,8 @@
 
 #include <cstdint>
 
-#include "floorgrid/localization/motion_model.hpp"
-#include "floorgrid/localization/robot_log.hpp"
+#include "floorgrid/robot/motion_model.hpp"
+#include "floorgrid/robot/robot_log.hpp"
 
 namespace floorgrid {
 

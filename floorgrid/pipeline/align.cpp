@@ -1,4 +1,4 @@
-#include "floorgrid/evaluation/alignment.hpp"
+#include "floorgrid/pipeline/align.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -71,8 +71,7 @@ Alignment align(const AlignmentInputs& in, const AlignmentOptions& options,
   std::string kind;
   std::unique_ptr<PointMapping> manual_truth;
   if (in.truth_warp) {
-    const PlanTruth* warp = in.truth_warp;
-    a.truth = [warp](const Eigen::Vector2d& p) { return warp->plan_to_grid(p); };
+    a.truth = in.truth_warp;
     kind = "warp";
   } else if (in.manual_pairs && in.manual_pairs->size() >= 3) {
     // The thesis's ground truth: the hand-picked pairs through the Delaunay model.

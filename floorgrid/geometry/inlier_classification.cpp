@@ -1,4 +1,4 @@
-#include "floorgrid/mapping/inlier_classification.hpp"
+#include "floorgrid/geometry/inlier_classification.hpp"
 
 #include <algorithm>
 #include <cfloat>

@@ -1,4 +1,4 @@
-#include "floorgrid/localization/odometry_noise.hpp"
+#include "floorgrid/robot/odometry_noise.hpp"
 
 #include "floorgrid/core/random.hpp"
 

@@ -1,4 +1,4 @@
-#include "floorgrid/localization/motion_model.hpp"
+#include "floorgrid/robot/motion_model.hpp"
 
 #include <algorithm>
 

@@ -1,4 +1,4 @@
-#include "floorgrid/localization/dual_pairs.hpp"
+#include "floorgrid/pipeline/dual_pairs.hpp"
 
 #include <algorithm>
 #include <cmath>

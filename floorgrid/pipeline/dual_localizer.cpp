@@ -1,11 +1,11 @@
-#include "floorgrid/localization/dual_localizer.hpp"
+#include "floorgrid/pipeline/dual_localizer.hpp"
 
 #include <chrono>
 #include <cmath>
 #include <memory>
 
 #include "floorgrid/core/error.hpp"
-#include "floorgrid/localization/dual_pairs.hpp"
+#include "floorgrid/pipeline/dual_pairs.hpp"
 
 namespace floorgrid {
 

@@ -1,4 +1,4 @@
-#include "floorgrid/localization/plan_registration.hpp"
+#include "floorgrid/pipeline/plan_registration.hpp"
 
 #include <algorithm>
 #include <cmath>

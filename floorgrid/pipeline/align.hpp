@@ -8,21 +8,21 @@
 
 #include "floorgrid/evaluation/domain.hpp"
 #include "floorgrid/evaluation/model_comparison.hpp"
-#include "floorgrid/localization/dual_localizer.hpp"
-#include "floorgrid/simulation/plan_truth.hpp"
+#include "floorgrid/evaluation/model_evaluation.hpp"
+#include "floorgrid/pipeline/dual_localizer.hpp"
 
 namespace floorgrid {
 
 /// What the main job works on: a dataset already read (see io::load_dataset).
 struct AlignmentInputs {
-  const OccupancyGrid& plan_grid;                ///< the plan as a grid (plan metres)
-  const VectorFloorplan* plan = nullptr;         ///< a DXF plan's walls (layers filtered), or null
-  const Eigen::Matrix2Xd& plan_wall_samples;     ///< plan wall points every ~5 cm (plan metres)
-  const OccupancyGrid& gridmap;                  ///< the robot's map
-  const RobotLog& log;                           ///< the run
-  std::optional<StartPoses> start;               ///< the manifest's initial poses
-  std::optional<double> plan_scale;              ///< the manifest's scale (nullopt: auto)
-  const PlanTruth* truth_warp = nullptr;         ///< a simulator's exact truth, or null
+  const OccupancyGrid& plan_grid;             ///< the plan as a grid (plan metres)
+  const VectorFloorplan* plan = nullptr;      ///< a DXF plan's walls (layers filtered), or null
+  const Eigen::Matrix2Xd& plan_wall_samples;  ///< plan wall points every ~5 cm (plan metres)
+  const OccupancyGrid& gridmap;               ///< the robot's map
+  const RobotLog& log;                        ///< the run
+  std::optional<StartPoses> start;            ///< the manifest's initial poses
+  std::optional<double> plan_scale;           ///< the manifest's scale (nullopt: auto)
+  GroundTruth truth_warp;  ///< a simulator's exact truth (plan -> grid), or empty
   const ReferencePairs* manual_pairs = nullptr;  ///< hand-picked truth pairs, or null
 };
 

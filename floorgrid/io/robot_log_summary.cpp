@@ -1,4 +1,4 @@
-#include "floorgrid/localization/robot_log.hpp"
+#include "floorgrid/io/robot_log_summary.hpp"
 
 #include <cmath>
 #include <sstream>
@@ -6,20 +6,6 @@
 #include "floorgrid/core/error.hpp"
 
 namespace floorgrid {
-
-const char* to_string(RangeKind kind) {
-  switch (kind) {
-    case RangeKind::hit:
-      return "hit";
-    case RangeKind::no_return:
-      return "no_return";
-    case RangeKind::too_close:
-      return "too_close";
-    case RangeKind::invalid:
-      return "invalid";
-  }
-  return "?";
-}
 
 const char* to_string(SettingSource source) {
   switch (source) {
@@ -33,20 +19,6 @@ const char* to_string(SettingSource source) {
       return "guess";
   }
   return "?";
-}
-
-RangeKind LaserScan::range_kind(std::size_t i) const {
-  const float r = ranges[i];
-  if (std::isnan(r) || r < 0.0f)
-    return RangeKind::invalid;
-  // Compared at the readings' own (float) precision: a reading printed as "80.99" in a log whose
-  // max range is 80.99 m is at max range, although float(80.99) < 80.99.
-  if (r >= static_cast<float>(max_range))
-    return RangeKind::no_return;
-  // A zero reading is how many lasers say "no echo": never a point at the laser itself.
-  if (r == 0.0f || r < static_cast<float>(min_range))
-    return RangeKind::too_close;
-  return RangeKind::hit;
 }
 
 namespace {
@@ -79,30 +51,6 @@ void validate_laser_settings(const LaserSettings& settings) {
     throw InputError("must be a finite non-zero number " + got(*settings.angle_increment), {}, 0,
                      "laser.angle_increment");
   }
-}
-
-RangeCounts count_ranges(const std::vector<LaserScan>& scans) {
-  RangeCounts counts;
-  for (const LaserScan& scan : scans) {
-    for (std::size_t i = 0; i < scan.ranges.size(); ++i) {
-      ++counts.total;
-      switch (scan.range_kind(i)) {
-        case RangeKind::hit:
-          ++counts.hits;
-          break;
-        case RangeKind::no_return:
-          ++counts.no_return;
-          break;
-        case RangeKind::too_close:
-          ++counts.too_close;
-          break;
-        case RangeKind::invalid:
-          ++counts.invalid;
-          break;
-      }
-    }
-  }
-  return counts;
 }
 
 }  // namespace floorgrid

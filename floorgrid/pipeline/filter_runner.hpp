@@ -5,10 +5,10 @@
 #include <vector>
 
 #include "floorgrid/localization/particle_filter.hpp"
-#include "floorgrid/localization/robot_log.hpp"
 #include "floorgrid/localization/scan_matcher.hpp"
 #include "floorgrid/localization/scan_observation.hpp"
 #include "floorgrid/localization/wall_field.hpp"
+#include "floorgrid/robot/robot_log.hpp"
 
 namespace floorgrid {
 

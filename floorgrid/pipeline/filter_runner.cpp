@@ -1,9 +1,9 @@
-#include "floorgrid/localization/filter_runner.hpp"
+#include "floorgrid/pipeline/filter_runner.hpp"
 
 #include <cmath>
 #include <utility>
 
-#include "floorgrid/localization/motion_model.hpp"
+#include "floorgrid/robot/motion_model.hpp"
 
 namespace floorgrid {
 

@@ -1,4 +1,4 @@
-#include "floorgrid/mapping/ransac.hpp"
+#include "floorgrid/geometry/ransac.hpp"
 
 #include <gtest/gtest.h>
 #include <Eigen/Dense>

@@ -1,0 +1,5 @@
+// A deliberate break of the dependency rule: check_includes must refuse this tree.
+#pragma once
+
+#include "floorgrid/io/map_io.hpp"
+#include "floorgrid/mapping/point_mapping.hpp"
