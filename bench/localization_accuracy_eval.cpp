@@ -204,29 +204,29 @@ int main(int argc, char** argv) {
       no_proposal = true;
   }
   const io::LoadedDataset d = io::load_dataset(argv[1]);
-  DualLocalizerOptions o;
+  DualLocalizerOptions options;
   if (plan_beam)
-    o.plan_model = ObservationModelKind::beam;
+    options.plan.model = ObservationModelKind::beam;
   if (plan_particles)
-    o.plan_filter.tracking_particles = plan_particles;
+    options.plan.filter.tracking_particles = plan_particles;
   if (plan_beams)
-    o.plan_observation.max_beams = plan_beams;
+    options.plan.observation.max_beams = plan_beams;
   if (plan_sigma > 0)
-    o.plan_likelihood.sigma_hit = plan_sigma;
+    options.plan.likelihood.sigma_hit = plan_sigma;
   if (beam_sigma > 0)
-    o.beam.sigma_hit = beam_sigma;
+    options.beam.sigma_hit = beam_sigma;
   if (beam_temp > 0)
-    o.beam.beam_weight = beam_temp;
+    options.beam.beam_weight = beam_temp;
   if (local_d > 0) {
-    o.local_distance = local_d;
-    o.local_heading = local_h;
+    options.dual_check.local_distance = local_d;
+    options.dual_check.local_heading = local_h;
   }
   if (search_scans)
-    o.scale_search_scans = search_scans;
+    options.scale_search.scans = search_scans;
   if (search_lf)
-    o.scale_search_model = ObservationModelKind::likelihood_field;
+    options.scale_search.model = ObservationModelKind::likelihood_field;
   if (no_proposal)
-    o.plan_runner.improved_proposal = o.grid_runner.improved_proposal = false;
+    options.plan.runner.improved_proposal = options.grid.runner.improved_proposal = false;
   std::optional<StartPoses> start;
   if (d.manifest.initial_pose && !global)
     start = StartPoses{d.manifest.initial_pose->plan, d.manifest.initial_pose->grid};
@@ -238,9 +238,17 @@ int main(int argc, char** argv) {
   if (!export_log.empty())
     io::write_carmen(log, export_log);
   const auto t0 = std::chrono::steady_clock::now();
-  const DualLocalization r =
-      localize_dual(d.plan_grid, d.gridmap, log, start, d.manifest.floorplan_scale, o, {},
-                    d.plan ? &*d.plan : nullptr);
+  const DualLocalization r = localize_dual({.plan = d.plan_grid,
+                                            .gridmap = d.gridmap,
+                                            .log = log,
+                                            .start = start,
+                                            .plan_scale = d.manifest.floorplan_scale,
+                                            .plan_geometry = d.plan ? &*d.plan : nullptr},
+                                           options);
+  if (!r.status.ok) {
+    fmt::print("localization failed: {}\n", r.status.message);
+    return 1;
+  }
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 

@@ -5,6 +5,7 @@
 #include <chrono>
 
 #include "apps/floorgrid/commands.hpp"
+#include "apps/floorgrid/dataset_run.hpp"
 #include "apps/floorgrid/progress.hpp"
 #include "apps/floorgrid/summaries.hpp"
 #include "floorgrid/core/error.hpp"
@@ -13,9 +14,6 @@
 #include "floorgrid/io/dataset_loader.hpp"
 
 namespace floorgrid::app {
-
-std::optional<StartPoses> start_poses(const io::LoadedDataset& d);
-const RobotLog& dataset_log(const io::LoadedDataset& d);
 
 void run_align(const std::string& dataset, const std::string& out, std::uint64_t seed, int cv) {
   if (cv == 1)
@@ -50,6 +48,7 @@ void run_align(const std::string& dataset, const std::string& out, std::uint64_t
     progress.update(p.stage == "fit" ? "fit " + p.detail : p.detail, p.done, p.total);
   });
   progress.finish();
+  require_localized(a.localization.status, d);
   print_localization(a.localization, a.pair_errors);
   if (a.models.empty())
     spdlog::warn("no pairs: no model could be fitted");

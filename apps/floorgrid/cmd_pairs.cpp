@@ -5,6 +5,7 @@
 #include <chrono>
 
 #include "apps/floorgrid/commands.hpp"
+#include "apps/floorgrid/dataset_run.hpp"
 #include "apps/floorgrid/progress.hpp"
 #include "apps/floorgrid/summaries.hpp"
 #include "floorgrid/core/error.hpp"
@@ -13,19 +14,6 @@
 #include "floorgrid/io/pairs_csv.hpp"
 
 namespace floorgrid::app {
-
-std::optional<StartPoses> start_poses(const io::LoadedDataset& d) {
-  if (!d.manifest.initial_pose)
-    return std::nullopt;
-  return StartPoses{d.manifest.initial_pose->plan, d.manifest.initial_pose->grid};
-}
-
-const RobotLog& dataset_log(const io::LoadedDataset& d) {
-  if (!d.log)
-    throw InputError("the dataset names no log: pairs need a robot run", d.manifest.manifest_path,
-                     0, "log");
-  return *d.log;
-}
 
 void add_pairs_command(CLI::App& root) {
   auto* cmd = root.add_subcommand("pairs", "Reference pairs by dual Monte Carlo localization");
@@ -48,13 +36,11 @@ void add_pairs_command(CLI::App& root) {
     DualLocalizerOptions options;
     options.seed = args->seed;
     ProgressLine progress;
-    const DualLocalization l = localize_dual(
-        d.plan_grid, d.gridmap, dataset_log(d), start_poses(d), d.manifest.floorplan_scale, options,
-        [&](const DualProgress& p) {
-          progress.update(p.phase, p.scan, p.scans, p.converged ? "converged" : "not converged");
-        },
-        d.plan ? &*d.plan : nullptr);
+    const DualLocalization l = localize_dual(dual_inputs(d), options, [&](const DualProgress& p) {
+      progress.update(p.phase, p.scan, p.scans, p.converged ? "converged" : "not converged");
+    });
     progress.finish();
+    require_localized(l.status, d);
     io::write_pairs_csv(l.pairs, out);
     std::optional<ErrorStatistics> errors;
     if (d.truth_warp && l.pairs.size() > 0) {

@@ -32,7 +32,7 @@ struct TrackingStart {
   double heading_sigma = 0.1;   ///< radians (>= 0)
   /// When set, the particles carry a scale drawn from N(scale, scale_sigma^2) (a fixed scale
   /// with scale_sigma 0); when not, they carry none (scale 1).
-  std::optional<double> scale;
+  std::optional<double> scale = std::nullopt;
   double scale_sigma = 0.0;  ///< standard deviation of the scale (>= 0)
 };
 

@@ -11,7 +11,15 @@ namespace floorgrid {
 
 namespace {
 
-double median_of(std::vector<double> v) {
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// The upper middle value (the middle of an odd count, the larger middle of an even one): the
+// wall distances are cell-quantized, and this keeps their median one of them.
+double upper_median(std::vector<double> v) {
   if (v.empty())
     return 0.0;
   const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
@@ -19,26 +27,91 @@ double median_of(std::vector<double> v) {
   return *mid;
 }
 
-/// The truth's domain: where a warp is known to hold (the gridmap saw something near), or
-/// inside the manual pairs' hull.
-EvaluationDomain truth_domain(const AlignmentInputs& in, const GroundTruth& truth,
-                              const std::string& kind) {
-  constexpr double spacing = 0.05;
-  if (kind == "warp") {
-    return in.plan ? warp_domain(*in.plan, in.gridmap, truth, spacing)
-                   : warp_domain(in.plan_wall_samples, in.gridmap, truth, spacing);
+/// The truth and the name of its domain: a simulator's warp, or the hand-picked pairs through
+/// the Delaunay model (the thesis's ground truth). Empty without either.
+struct Truth {
+  std::optional<GroundTruth> plan_to_grid;
+  std::string kind = "none";
+};
+
+Truth dataset_truth(const AlignmentInputs& in) {
+  if (in.truth_warp)
+    return {in.truth_warp, "warp"};
+  if (in.manual_pairs && in.manual_pairs->size() >= 3) {
+    MappingOptions dt;
+    dt.model = "dt";
+    // Shared by the function: the truth outlives this call (Alignment::truth).
+    std::shared_ptr<PointMapping> model = make_mapping(dt);
+    model->fit(*in.manual_pairs);
+    return {[model](const Eigen::Vector2d& p) { return model->forward(p); }, "manual_pairs_hull"};
   }
-  return in.plan ? hull_domain(*in.plan, in.manual_pairs->points_in_plan, spacing)
-                 : hull_domain(in.plan_wall_samples, in.manual_pairs->points_in_plan, spacing);
+  return {};
+}
+
+/// The truth's domain: where a warp is known to hold (the gridmap saw something near), or
+/// inside the manual pairs' hull; nothing without a truth.
+EvaluationDomain truth_domain(const AlignmentInputs& in, const Truth& truth, double spacing) {
+  if (truth.kind == "warp") {
+    return in.plan ? warp_domain(*in.plan, in.gridmap, *truth.plan_to_grid, spacing)
+                   : warp_domain(in.plan_wall_samples, in.gridmap, *truth.plan_to_grid, spacing);
+  }
+  if (truth.kind == "manual_pairs_hull") {
+    return in.plan ? hull_domain(*in.plan, in.manual_pairs->points_in_plan, spacing)
+                   : hull_domain(in.plan_wall_samples, in.manual_pairs->points_in_plan, spacing);
+  }
+  return {"none", Eigen::Matrix2Xd(2, 0), spacing};
+}
+
+/// Each pair's distance from where the truth puts its plan point.
+ErrorStatistics pair_errors(const ReferencePairs& pairs, const GroundTruth& truth) {
+  std::vector<double> errors(static_cast<std::size_t>(pairs.size()));
+  for (Eigen::Index i = 0; i < pairs.size(); ++i)
+    errors[static_cast<std::size_t>(i)] =
+        (truth(pairs.points_in_plan.col(i)) - pairs.points_in_grid.col(i)).norm();
+  return error_statistics(std::move(errors));
+}
+
+/// Every model fitted to the pairs and judged against the truth and against the gridmap's
+/// walls; the model `auto` chose.
+void fit_and_judge_models(const AlignmentInputs& in, const AlignmentOptions& options, Alignment& a,
+                          const AlignmentProgressCallback& progress) {
+  const ReferencePairs& pairs = a.localization.pairs;
+  const auto fit_start = Clock::now();
+  std::vector<ModelReport> reports =
+      compare_models(pairs, a.domain, a.truth, options.models,
+                     [&](const std::string& model, std::size_t done, std::size_t total) {
+                       if (progress)
+                         progress({"fit", model, done, total});
+                     });
+  const double total_seconds = seconds_since(fit_start);
+  double wall_seconds = 0.0;
+  for (ModelReport& r : reports) {
+    a.evaluate_seconds += r.evaluate_seconds;
+    ModelAlignment m;
+    if (r.model) {
+      const auto wall_start = Clock::now();
+      const Eigen::Matrix2Xd mapped = r.model->forward_batch(in.plan_wall_samples);
+      m.wall_distance =
+          wall_distance(in.plan_wall_samples, mapped, in.gridmap, pairs.points_in_plan,
+                        options.near_pairs, options.wall_distance_cap);
+      if (const auto* chooser = dynamic_cast<const AutoMapping*>(r.model.get()))
+        a.chosen = chooser->chosen().name();
+      wall_seconds += seconds_since(wall_start);
+    }
+    m.report = std::move(r);
+    a.models.push_back(std::move(m));
+  }
+  a.fit_seconds = total_seconds - a.evaluate_seconds;
+  a.evaluate_seconds += wall_seconds;
 }
 
 }  // namespace
 
 WallDistance wall_distance(const Eigen::Matrix2Xd& samples, const Eigen::Matrix2Xd& mapped,
                            const OccupancyGrid& gridmap, const Eigen::Matrix2Xd& pair_points,
-                           double near) {
+                           double near, double cap) {
   WallDistance w;
-  const DistanceField walls = occupied_distance_field(gridmap, 5.0);
+  const DistanceField walls = occupied_distance_field(gridmap, cap);
   const PointIndex2D pairs(pair_points);
   std::vector<double> near_distances;
   w.distances.reserve(static_cast<std::size_t>(samples.cols()));
@@ -49,84 +122,39 @@ WallDistance wall_distance(const Eigen::Matrix2Xd& samples, const Eigen::Matrix2
       near_distances.push_back(d);
   }
   w.points = w.distances.size();
-  w.median_m = median_of(w.distances);
+  w.median_m = upper_median(w.distances);
   w.near_points = near_distances.size();
-  w.near_median_m = median_of(near_distances);
+  w.near_median_m = upper_median(near_distances);
   return w;
 }
 
 Alignment align(const AlignmentInputs& in, const AlignmentOptions& options,
-                const std::function<void(const AlignmentProgress&)>& progress) {
+                const AlignmentProgressCallback& progress) {
   Alignment a;
-  a.localization = localize_dual(
-      in.plan_grid, in.gridmap, in.log, in.start, in.plan_scale, options.localization,
-      [&](const DualProgress& p) {
-        if (progress)
-          progress({"localize", p.phase, p.scan, p.scans});
-      },
-      in.plan);
-  const ReferencePairs& pairs = a.localization.pairs;
+  // The reference pairs, by dual Monte Carlo localization.
+  a.localization = localize_dual({.plan = in.plan_grid,
+                                  .gridmap = in.gridmap,
+                                  .log = in.log,
+                                  .start = in.start,
+                                  .plan_scale = in.plan_scale,
+                                  .plan_geometry = in.plan},
+                                 options.localization, [&](const DualProgress& p) {
+                                   if (progress)
+                                     progress({"localize", p.phase, p.scan, p.scans});
+                                 });
+  if (!a.localization.status.ok)
+    return a;
 
-  // The truth and where it holds.
-  std::string kind;
-  std::unique_ptr<PointMapping> manual_truth;
-  if (in.truth_warp) {
-    a.truth = in.truth_warp;
-    kind = "warp";
-  } else if (in.manual_pairs && in.manual_pairs->size() >= 3) {
-    // The thesis's ground truth: the hand-picked pairs through the Delaunay model.
-    MappingOptions dt;
-    dt.model = "dt";
-    manual_truth = make_mapping(dt);
-    manual_truth->fit(*in.manual_pairs);
-    const PointMapping* m = manual_truth.get();
-    a.truth = [m](const Eigen::Vector2d& p) { return m->forward(p); };
-    kind = "manual_pairs_hull";
-  }
-  if (a.truth) {
-    a.domain = truth_domain(in, *a.truth, kind);
-    if (in.truth_warp && pairs.size() > 0) {
-      std::vector<double> errors(static_cast<std::size_t>(pairs.size()));
-      for (Eigen::Index i = 0; i < pairs.size(); ++i)
-        errors[static_cast<std::size_t>(i)] =
-            ((*a.truth)(pairs.points_in_plan.col(i)) - pairs.points_in_grid.col(i)).norm();
-      a.pair_errors = error_statistics(std::move(errors));
-    }
-  } else {
-    a.domain = {"none", Eigen::Matrix2Xd(2, 0), 0.05};
-  }
+  // The truth, where it holds, and the pairs against it.
+  const Truth truth = dataset_truth(in);
+  a.truth = truth.plan_to_grid;
+  a.domain = truth_domain(in, truth, options.domain_spacing);
+  if (in.truth_warp && a.localization.pairs.size() > 0)
+    a.pair_errors = pair_errors(a.localization.pairs, in.truth_warp);
 
   // Every model, fitted and judged.
-  if (pairs.size() == 0)
-    return a;
-  const auto fit_start = std::chrono::steady_clock::now();
-  std::vector<ModelReport> reports =
-      compare_models(pairs, a.domain, a.truth, options.models,
-                     [&](const std::string& model, std::size_t done, std::size_t total) {
-                       if (progress)
-                         progress({"fit", model, done, total});
-                     });
-  const double total_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - fit_start).count();
-  double wall_seconds = 0.0;
-  for (ModelReport& r : reports) {
-    a.evaluate_seconds += r.evaluate_seconds;
-    ModelAlignment m;
-    if (r.model) {
-      const auto wall_start = std::chrono::steady_clock::now();
-      const Eigen::Matrix2Xd mapped = r.model->forward_batch(in.plan_wall_samples);
-      m.wall_distance = wall_distance(in.plan_wall_samples, mapped, in.gridmap,
-                                      pairs.points_in_plan, options.near_pairs);
-      if (const auto* chooser = dynamic_cast<const AutoMapping*>(r.model.get()))
-        a.chosen = chooser->chosen().name();
-      wall_seconds +=
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-    }
-    m.report = std::move(r);
-    a.models.push_back(std::move(m));
-  }
-  a.fit_seconds = total_seconds - a.evaluate_seconds;
-  a.evaluate_seconds += wall_seconds;
+  if (a.localization.pairs.size() > 0)
+    fit_and_judge_models(in, options, a, progress);
   return a;
 }
 

@@ -33,6 +33,10 @@ struct AlignmentOptions {
   /// Metres: wall distances are also summarized over the plan wall points this close to a
   /// pair (where the models have data).
   double near_pairs = 2.0;
+  /// Metres: the gridmap's distance field for wall distances is capped here.
+  double wall_distance_cap = 5.0;
+  /// Metres between the plan wall samples of the evaluation domain (SPEC: every 5 cm).
+  double domain_spacing = 0.05;
 };
 
 /// How far a model puts the plan's walls from the gridmap's walls (no truth needed): each plan
@@ -72,19 +76,24 @@ struct Alignment {
   std::optional<GroundTruth> truth;
 };
 
+/// Called as the main job advances (may be empty).
+using AlignmentProgressCallback = std::function<void(const AlignmentProgress&)>;
+
 /// The main job (SPEC `align`): reference pairs by dual Monte Carlo localization, every model
 /// fitted to them and judged against the truth over its domain (a simulator's warp: wall
 /// points where the gridmap saw something; manual pairs through the dt model: wall points
 /// inside their hull), and against the gridmap's walls. A model that cannot be fitted is
-/// reported, not fatal. InputError when the localization fails (see localize_dual).
+/// reported, not fatal. A localization that fails is reported in
+/// `localization.status` (no models are fitted then); InputError for bad input (see
+/// localize_dual).
 Alignment align(const AlignmentInputs& inputs, const AlignmentOptions& options = {},
-                const std::function<void(const AlignmentProgress&)>& progress = {});
+                const AlignmentProgressCallback& progress = {});
 
 /// The distance from each plan wall point, mapped by `plan_to_grid`, to the nearest occupied
-/// cell of `gridmap`, summarized over all points and over those within `near` metres of a
-/// pair's plan point.
+/// cell of `gridmap` (capped at `cap` metres), summarized over all points and over those
+/// within `near` metres of a pair's plan point.
 WallDistance wall_distance(const Eigen::Matrix2Xd& plan_wall_samples,
                            const Eigen::Matrix2Xd& mapped, const OccupancyGrid& gridmap,
-                           const Eigen::Matrix2Xd& pair_points_in_plan, double near);
+                           const Eigen::Matrix2Xd& pair_points_in_plan, double near, double cap);
 
 }  // namespace floorgrid

@@ -1,11 +1,13 @@
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "floorgrid/core/parallel.hpp"
 #include "floorgrid/localization/beam_model.hpp"
 #include "floorgrid/localization/likelihood_field_model.hpp"
 #include "floorgrid/localization/pair_extraction.hpp"
@@ -26,6 +28,20 @@ struct StartPoses {
   Pose2 grid;  ///< grid frame
 };
 
+/// What the dual localization works on. Everything referenced must outlive the call.
+struct DualLocalizerInputs {
+  const OccupancyGrid& plan;     ///< the plan as a grid (plan metres)
+  const OccupancyGrid& gridmap;  ///< the robot's map (world metres)
+  const RobotLog& log;           ///< the run: odometry and scans
+  /// The start in both maps (the manifest's initial_pose); without it, global localization.
+  std::optional<StartPoses> start = std::nullopt;
+  /// World metres per plan metre when known; without it, the scale is searched.
+  std::optional<double> plan_scale = std::nullopt;
+  /// A DXF plan's walls in the plan grid's frame, or null: scans are then matched onto these
+  /// exact walls instead of the plan grid's occupied cells.
+  const VectorFloorplan* plan_geometry = nullptr;
+};
+
 /// The observation model a filter uses.
 enum class ObservationModelKind {
   likelihood_field,  ///< distance-transform likelihood field (default)
@@ -42,79 +58,84 @@ ParticleFilterOptions default_plan_filter_options();
 /// as converged (the gridmap holds what the laser sees).
 ParticleFilterOptions default_grid_filter_options();
 
-/// Every setting of the dual localization (defaults in one place).
-struct DualLocalizerOptions {
-  ParticleFilterOptions plan_filter = default_plan_filter_options();  ///< on the floorplan
-  ParticleFilterOptions grid_filter = default_grid_filter_options();  ///< on the gridmap
-  /// Each filter's observation model. The likelihood field by default for both: it tolerates
-  /// what a plan lacks (furniture endpoints fall to its floor) and costs one lookup per beam;
-  /// the beam model (thesis eq. 3.43-3.47) costs a ray cast per beam.
-  ObservationModelKind plan_model = ObservationModelKind::likelihood_field;
-  ObservationModelKind grid_model = ObservationModelKind::likelihood_field;  ///< the gridmap's
-  /// The plan filter's likelihood field: wider than the gridmap's, since a plan is drawn, not
-  /// measured (misdrawn walls, doors shown closed).
-  LikelihoodFieldOptions plan_likelihood{0.15, 0.8, 0.2, 2.0, 0.5, true};
-  LikelihoodFieldOptions grid_likelihood{0.1, 0.9, 0.1, 2.0, 0.5, true};  ///< the gridmap's
-  /// Beam models (when chosen): a sharp hit, a fifth of the beams allowed to stop short on
-  /// furniture, tempered by half.
-  BeamModelOptions beam{0.7, 0.2, 0.1, 0.0, 0.05, 0.5, 0.0, 0.1, 0.5, false};
-  ObservationOptions plan_observation{60};  ///< beams per scan of the plan filter
-  ObservationOptions grid_observation{60};  ///< beams per scan of the gridmap filter
-  /// How each filter is fed: update gate, improved proposal, scan matching (the plan's and the
-  /// gridmap's).
-  FilterRunnerOptions plan_runner, grid_runner;
-  WallFieldOptions walls;  ///< the scan matchers' wall lookup
+/// How one map's particle filter localizes.
+struct MapFilterOptions {
+  ParticleFilterOptions filter;  ///< the particle filter
+  /// Its observation model. The likelihood field by default: it tolerates what a plan lacks
+  /// (furniture endpoints fall to its floor) and costs one lookup per beam; the beam model
+  /// (thesis eq. 3.43-3.47) costs a ray cast per beam.
+  ObservationModelKind model = ObservationModelKind::likelihood_field;
+  LikelihoodFieldOptions likelihood;  ///< the likelihood field (always built: global seeding)
+  ObservationOptions observation{.max_beams = 60};  ///< beams per scan of the filter
+  /// How the filter is fed: update gate, improved proposal, scan matching.
+  FilterRunnerOptions runner;
+};
+
+/// The plan filter's settings: its likelihood field is wider than the gridmap's, since a plan
+/// is drawn, not measured (misdrawn walls, doors shown closed).
+MapFilterOptions default_plan_options();
+/// The gridmap filter's settings.
+MapFilterOptions default_grid_options();
+
+/// Step 1: the gridmap filter localizes globally (or tracks from the given start).
+struct GridmapLocalizationOptions {
+  /// A gridmap filter not converged after this many scans: global localization failed.
+  int max_global_scans = 600;
+};
+
+/// Step 2: where the run lies on the plan.
+struct PlanLocationOptions {
   /// Localize on the plan's walls as a robot inside sees them: the far faces of walls drawn as
   /// two lines (the outline's outer line, a wall's hollow) are dropped (visible_walls).
   bool visible_walls_only = true;
   VisibleWallsOptions visible;  ///< how the visible walls are found
-  /// Match scans onto the plan by their beams that reach the plan's first wall along them
-  /// (FilterRunnerOptions::beam_tolerance): the endpoints on furniture a plan lacks would pull
-  /// the match towards the walls behind.
-  bool plan_beam_consistency = true;
-  PairExtractionOptions pairs;  ///< how endpoints become pairs
-  /// Scans whose pairs disagree with the other scans' at the same walls are dropped.
-  OutlierScanOptions outlier_scans;
-  /// Pairs only from scans whose scan match succeeded on both maps (the refined poses), and
-  /// never from a scan whose match is degenerate in either (a corridor, an aisle).
-  bool refine_poses = true;
-
-  // ---- the plan's start and scale ----
   /// Without a start: the run's laser endpoints, seen from the gridmap filter's poses, are
   /// gathered into a submap and located on the plan (register_on_plan).
   SubmapOptions submap;
   PlanRegistrationOptions registration;  ///< the submap's global search
   /// The plan's likelihood field for the registration: wide, since a whole run meets every
   /// misdrawn wall.
-  LikelihoodFieldOptions registration_likelihood{0.25, 0.8, 0.2, 2.0, 1.0, true};
-  /// Scales (world metres per plan metre) searched when the plan's scale is not given.
-  ScaleRange scale_range{0.8, 1.25};
-  /// The plan filter's model during the scale search. The likelihood field by default: on a
-  /// plan drawn wrong the beam model punishes every reading that passes a misdrawn wall and
-  /// drifts to whatever scale hides them; the likelihood field's bias (it stretches a scan to
-  /// pull furniture endpoints onto the walls behind them) is removed by the profile that
-  /// follows, which counts only endpoints exactly on walls.
-  ObservationModelKind scale_search_model = ObservationModelKind::likelihood_field;
-  ObservationOptions scale_search_observation{30};  ///< beams per scan of the scale search
-  /// Random walk of the scale during the search, per square root of a metre travelled.
-  double scale_walk = 0.01;
-  int scale_search_scans = 300;  ///< scans of the scale search after the plan filter converged
-  /// Then the scale is profiled (profile_scale) over the search's result times 1 +- this, in
-  /// scale_profile_steps steps each way, on up to scale_profile_scans of its scans.
-  double scale_profile_range = 0.1;
-  int scale_profile_steps = 20;
-  std::size_t scale_profile_scans = 60;
-  /// With an unknown plan scale: refit it, with the refined plan poses of every scan used for
-  /// pairs, by a joint Gauss-Newton (fit_scale), and make the pairs with that scale.
-  bool refit_scale = true;
-  /// When the refit moves the scale by more than this share, the plan filter tracks again with
-  /// the refitted scale (and the scale is refitted on that), at most max_plan_passes passes.
-  double retrack_scale_change = 0.002;
-  int max_plan_passes = 2;
-  int max_global_scans =
-      600;  ///< a gridmap filter not converged by then: global localization failed
+  LikelihoodFieldOptions registration_likelihood{.sigma_hit = 0.25,
+                                                 .z_hit = 0.8,
+                                                 .z_rand = 0.2,
+                                                 .max_distance = 2.0,
+                                                 .beam_weight = 1.0,
+                                                 .unknown_is_free = true};
+  /// Plan metres and radians: the plan filter's first spread around a given start pose...
+  double given_start_sigma = 0.2;
+  double given_start_heading_sigma = 0.1;  ///< radians
+  /// ... and around the start the registration found (coarser: a lattice's steps).
+  double registered_start_sigma = 1.0;
+  double registered_start_heading_sigma = 0.2;  ///< radians
+};
 
-  // ---- the dual check: the two filters must agree through the plan's registration ----
+/// Step 3: the plan's scale, searched by the plan filter when it is not given.
+struct ScaleSearchOptions {
+  /// Scales (world metres per plan metre) searched when the plan's scale is not given.
+  ScaleRange range{.min = 0.8, .max = 1.25};
+  /// Share of the range: the scales' spread at the search's start when no registration found
+  /// a scale first (a given start with an unknown scale).
+  double initial_sigma_share = 0.25;
+  /// The plan filter's model during the search. The likelihood field by default: on a plan
+  /// drawn wrong the beam model punishes every reading that passes a misdrawn wall and drifts
+  /// to whatever scale hides them; the likelihood field's bias (it stretches a scan to pull
+  /// furniture endpoints onto the walls behind them) is removed by the profile that follows,
+  /// which counts only endpoints exactly on walls.
+  ObservationModelKind model = ObservationModelKind::likelihood_field;
+  ObservationOptions observation{.max_beams = 30};  ///< beams per scan of the search
+  /// Random walk of the scale during the search, per square root of a metre travelled.
+  double walk = 0.01;
+  int scans = 300;  ///< scans of the search after the plan filter started
+  /// Then the scale is profiled (profile_scale) over the search's result times 1 +- this, in
+  /// profile_steps steps each way, on up to profile_scans of its scans.
+  double profile_range = 0.1;
+  int profile_steps = 20;
+  std::size_t profile_scans = 60;
+};
+
+/// Step 4: the dual check while the plan filter tracks: the two filters must agree through
+/// the plan's registration.
+struct DualCheckOptions {
   /// The local registration (LocalRegistration) from the last scans where both filters were
   /// sure: its window, the pairs it needs, and how many scans it stays valid without news.
   std::size_t local_window = 50;
@@ -139,12 +160,81 @@ struct DualLocalizerOptions {
   /// Scans a plan filter may stay unconverged (the gridmap filter converged) before it is
   /// re-initialized there as well.
   int reconverge_scans = 40;
-  double reinitialize_sigma = 1.0;          ///< plan metres: the new cloud's position spread
-  double reinitialize_heading_sigma = 0.2;  ///< radians: its heading spread
-
-  int threads = 2;         ///< threads of the observation models
-  std::uint64_t seed = 1;  ///< randomness of both filters
+  /// Plan metres and radians: the re-initialized cloud's spread around the pose the local
+  /// registration gives...
+  double local_reinitialize_sigma = 0.3;
+  double local_reinitialize_heading_sigma = 0.1;  ///< radians
+  /// ... and around the pose the global registration gives.
+  double reinitialize_sigma = 1.0;
+  double reinitialize_heading_sigma = 0.2;  ///< radians
 };
+
+/// Step 5: with an unknown plan scale, the scale refitted with the refined plan poses.
+struct ScaleRefitOptions {
+  /// Refit the scale, with the refined plan poses of every scan used for pairs, by a joint
+  /// Gauss-Newton (fit_scale), and make the pairs with that scale.
+  bool enabled = true;
+  std::size_t min_scans = 10;  ///< matched scans the refit needs, else the search's scale stays
+  int max_iterations = 30;     ///< of the joint Gauss-Newton
+  int jackknife_blocks = 20;   ///< blocks of scans for the scale's standard deviation
+  /// A refit farther than this share from the searched scale is not trusted (too few or bad
+  /// scans): the search's scale stays.
+  double max_change = 0.1;
+  /// When the refit moves the scale by more than this share, the plan filter tracks again with
+  /// the refitted scale (and the scale is refitted on that), at most max_plan_passes passes.
+  double retrack_change = 0.002;
+  int max_plan_passes = 2;
+};
+
+/// Every setting of the dual localization (defaults in one place).
+struct DualLocalizerOptions {
+  MapFilterOptions plan = default_plan_options();  ///< the filter on the floorplan
+  MapFilterOptions grid = default_grid_options();  ///< the filter on the gridmap
+  /// The beam model of the filters that choose it: a sharp hit, a fifth of the beams allowed
+  /// to stop short on furniture, tempered by half.
+  BeamModelOptions beam{.weight_hit = 0.7,
+                        .weight_unexpected = 0.2,
+                        .weight_random = 0.1,
+                        .weight_max = 0.0,
+                        .sigma_hit = 0.05,
+                        .lambda_unexpected = 0.5,
+                        .max_range = 0.0,
+                        .max_window = 0.1,
+                        .beam_weight = 0.5,
+                        .unknown_is_occupied = false};
+  WallFieldOptions walls;  ///< the scan matchers' wall lookup
+  /// Match scans onto the plan by their beams that reach the plan's first wall along them
+  /// (FilterRunnerOptions::beam_tolerance): the endpoints on furniture a plan lacks would pull
+  /// the match towards the walls behind.
+  bool plan_beam_consistency = true;
+  /// Pairs only from scans whose scan match succeeded on both maps (the refined poses), and
+  /// never from a scan whose match is degenerate in either (a corridor, an aisle).
+  bool refine_poses = true;
+
+  GridmapLocalizationOptions gridmap_localization;  ///< step 1
+  PlanLocationOptions plan_location;                ///< step 2
+  ScaleSearchOptions scale_search;                  ///< step 3
+  DualCheckOptions dual_check;                      ///< step 4
+  ScaleRefitOptions scale_refit;                    ///< step 5
+  PairExtractionOptions pairs;                      ///< how endpoints become pairs
+  /// Scans whose pairs disagree with the other scans' at the same walls are dropped.
+  OutlierScanOptions outlier_scans;
+
+  int threads = kDefaultThreads;  ///< threads of the observation models
+  std::uint64_t seed = 1;         ///< randomness of both filters (see SeedStream)
+};
+
+/// Each filter draws from its own stream of the options' seed, so that a change in one step
+/// does not shift the randomness of another: the stream's seed is seed + offset.
+enum class SeedStream : std::uint64_t {
+  gridmap_filter = 1,     ///< the gridmap filter
+  scale_search = 2,       ///< the plan filter of the scale search
+  plan_filter = 3,        ///< the tracking plan filter (each re-initialization takes the next)
+  gridmap_reseed = 1000,  ///< a gridmap filter re-seeded at scan i takes this + i
+};
+
+/// The seed of a stream.
+std::uint64_t stream_seed(std::uint64_t seed, SeedStream stream, std::uint64_t index = 0);
 
 /// Per scan: where each filter stood.
 struct ScanRecord {
@@ -166,8 +256,20 @@ struct DivergenceCount {
   std::map<std::string, std::size_t> by_reason;  ///< reason -> count
 };
 
+/// Whether the dual localization reached its end (numerical trouble is a result, not an
+/// exception: the caller decides what a failure means).
+struct LocalizationStatus {
+  bool ok = true;  ///< both filters localized; pairs were made
+  /// What failed, in words, with what to check (empty when ok).
+  std::string message;
+  /// The dataset field most likely at fault: "gridmap", "initial_pose", "log", ... (empty when
+  /// ok).
+  std::string field;
+};
+
 /// What the dual localization found.
 struct DualLocalization {
+  LocalizationStatus status;      ///< whether it succeeded
   ReferencePairs pairs;           ///< plan metres -> grid metres
   PairRejections rejections;      ///< endpoints that did not become pairs, by reason
   std::vector<ScanRecord> scans;  ///< one per scan of the log
@@ -205,39 +307,39 @@ struct DualLocalization {
 
 /// Progress of a long run.
 struct DualProgress {
-  std::string phase;       ///< "gridmap", "plan: registration", "plan: scale search", "plan"
+  std::string phase;       ///< "gridmap", "plan"
   std::size_t scan = 0;    ///< scans done in this phase
   std::size_t scans = 0;   ///< scans in this phase
   bool converged = false;  ///< the phase's filter at the last scan
   std::size_t pairs = 0;   ///< usable scans so far (plan phase)
 };
 
+/// Called every few scans of a long run (may be empty).
+using DualProgressCallback = std::function<void(const DualProgress&)>;
+
 /// Dual Monte Carlo localization (thesis 4.6): one particle filter on the gridmap and one on
 /// the rasterized floorplan, fed the same odometry and scans; pairs from the laser endpoints of
 /// every scan where both are converged (and, by default, where both scans match their map).
 ///
-/// 1. The gridmap filter localizes globally from its best hypotheses for the first scan (or
-///    tracks from the given start) and runs through the log.
-/// 2. The plan is related to the run: from the given start poses, or, without them, by
-///    locating on the plan the submap of the laser endpoints seen from the gridmap filter's
-///    converged poses (global localization with a whole tour's worth of evidence). Without a
-///    plan scale, the plan filter then searches it: its particles carry scales with a random
-///    walk for scale_search_scans.
-/// 3. The plan filter tracks from where the registration puts the gridmap filter's pose, with
-///    the scale found. The dual check re-initializes it around that pose when the two disagree
-///    or it stays lost while the gridmap filter is converged.
-/// 4. With an unknown scale, the scale is refitted jointly with the refined plan poses.
-/// 5. Pairs: each kept endpoint from the plan pose (ranges divided by the scale) and from the
-///    gridmap pose, where it lies on a wall of both maps.
+/// 1. Localize on the gridmap: the gridmap filter localizes globally from its best hypotheses
+///    for the first scan (or tracks from the given start) and runs through the log.
+/// 2. Locate the run on the plan: from the given start poses, or, without them, by locating on
+///    the plan the submap of the laser endpoints seen from the gridmap filter's converged poses
+///    (global localization with a whole tour's worth of evidence).
+/// 3. Search the plan scale (when not given): the plan filter's particles carry scales with a
+///    random walk; the result is then profiled on the scans' endpoints.
+/// 4. Track the plan: the plan filter tracks from where the registration puts the gridmap
+///    filter's pose, with the scale found. The dual check re-initializes it around that pose
+///    when the two disagree or it stays lost while the gridmap filter is converged.
+/// 5. Refit the scale (when not given) jointly with the refined plan poses, tracking again
+///    when it moved; then the pairs: each kept endpoint from the plan pose (ranges divided by
+///    the scale) and from the gridmap pose, where it lies on a wall of both maps.
 ///
-/// `plan_geometry`, when given (a DXF plan's walls, in the plan grid's frame), is what scans
-/// are matched onto in the plan instead of the plan grid's occupied cells: exact walls, not
-/// cells. InputError when the gridmap filter never converges or the run has no endpoints.
-DualLocalization localize_dual(const OccupancyGrid& plan, const OccupancyGrid& grid,
-                               const RobotLog& log, const std::optional<StartPoses>& start,
-                               const std::optional<double>& plan_scale,
+/// InputError for bad input (fewer than two scans, a scale that is not a positive number, a run
+/// without endpoints, a plan without free space); a gridmap filter that never converges is
+/// reported in `status`.
+DualLocalization localize_dual(const DualLocalizerInputs& inputs,
                                const DualLocalizerOptions& options = {},
-                               const std::function<void(const DualProgress&)>& progress = {},
-                               const VectorFloorplan* plan_geometry = nullptr);
+                               const DualProgressCallback& progress = {});
 
 }  // namespace floorgrid

@@ -1,9 +1,12 @@
 #include "floorgrid/pipeline/dual_pairs.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <map>
 #include <optional>
+
+#include "floorgrid/pipeline/plan_tracking.hpp"
 
 namespace floorgrid {
 
@@ -14,8 +17,8 @@ bool usable_for_pairs(const ScanRecord& r, bool refine) {
 }
 
 double refit_plan_scale(DualLocalization& result, const RobotLog& log, const WallField& plan_walls,
-                        const FilterRunnerOptions& plan_runner, double scale,
-                        const GridRayCaster* plan_caster) {
+                        const FilterRunnerOptions& plan_runner, const ScaleRefitOptions& options,
+                        double scale, const GridRayCaster* plan_caster) {
   std::vector<ScanObservation> points;
   std::vector<Pose2> poses;
   std::vector<std::size_t> which;
@@ -26,7 +29,7 @@ double refit_plan_scale(DualLocalization& result, const RobotLog& log, const Wal
     poses.push_back(r.plan.match.pose);
     which.push_back(r.scan);
   }
-  if (points.size() < 10) {
+  if (points.size() < options.min_scans) {
     result.notes.push_back("too few matched scans to refit the plan scale: kept the search's");
     return scale;
   }
@@ -34,14 +37,47 @@ double refit_plan_scale(DualLocalization& result, const RobotLog& log, const Wal
   views.reserve(points.size());
   for (const ScanObservation& p : points)
     views.push_back(&p);
-  const ScaleFit fit = fit_scale(plan_walls, views, poses, scale, plan_runner.match, 30, 20,
-                                 plan_caster, plan_runner.beam_tolerance);
+  const ScaleFit fit =
+      fit_scale(plan_walls, views, poses, scale, plan_runner.match, options.max_iterations,
+                options.jackknife_blocks, plan_caster, plan_runner.beam_tolerance);
   result.plan_scale_std = fit.scale_std;
   for (std::size_t k = 0; k < which.size(); ++k)
     result.scans[which[k]].plan.match.pose = fit.poses[k];
   result.notes.push_back("plan scale refitted on " + std::to_string(fit.scans) +
                          " scans by joint scan matching");
   return fit.scale;
+}
+
+void track_plan_and_refit_scale(const DualMaps& maps, const RobotLog& log,
+                                const DualLocalizerOptions& options, PlanLocation& location,
+                                DualLocalization& result, const DualProgressCallback& progress) {
+  const ScaleRefitOptions& refit_options = options.scale_refit;
+  const bool refit_scale =
+      result.plan_scale_estimated && options.refine_poses && refit_options.enabled;
+  for (int pass = 1;; ++pass) {
+    auto clock = std::chrono::steady_clock::now();
+    track_plan(maps, log, options, location, result, progress);
+    result.localize_seconds += seconds_since(clock);
+    if (!refit_scale)
+      break;
+    clock = std::chrono::steady_clock::now();
+    const double refit = refit_plan_scale(result, log, maps.plan_walls(), options.plan.runner,
+                                          refit_options, location.scale, maps.plan_rays());
+    result.scale_search_seconds += seconds_since(clock);
+    const double change = std::abs(refit / location.scale - 1.0);
+    if (change > refit_options.max_change) {
+      result.plan_scale_std = result.plan_scale_search_std;
+      result.notes.push_back("the scale refit went far from the search's: kept the search's");
+      break;
+    }
+    location.scale = refit;
+    if (location.given)
+      location.registration = registration_of(*location.given, refit);
+    if (change <= refit_options.retrack_change || pass >= refit_options.max_plan_passes)
+      break;
+    result.notes.push_back("the plan tracked again with the refitted scale");
+  }
+  result.plan_scale = location.scale;
 }
 
 void make_pairs(DualLocalization& result, const RobotLog& log, const WallField& plan_walls,

@@ -1,6 +1,7 @@
 #pragma once
 
-#include "floorgrid/pipeline/dual_localizer.hpp"
+#include "floorgrid/pipeline/dual_maps.hpp"
+#include "floorgrid/pipeline/plan_location.hpp"
 
 namespace floorgrid {
 
@@ -10,10 +11,18 @@ bool usable_for_pairs(const ScanRecord& record, bool refine);
 
 /// Refits the plan's scale jointly with the refined plan poses of every usable scan
 /// (fit_scale) and stores the refitted poses in the records; returns the scale (or `scale`
-/// when fewer than ten scans are usable) and sets result.plan_scale_std.
+/// when fewer than options.min_scans scans are usable) and sets result.plan_scale_std.
 double refit_plan_scale(DualLocalization& result, const RobotLog& log, const WallField& plan_walls,
-                        const FilterRunnerOptions& plan_runner, double scale,
-                        const GridRayCaster* plan_caster = nullptr);
+                        const FilterRunnerOptions& plan_runner, const ScaleRefitOptions& options,
+                        double scale, const GridRayCaster* plan_caster = nullptr);
+
+/// Steps 4 and 5 of localize_dual: the plan filter tracks (track_plan) and, with an unknown
+/// scale, the scale is refitted with the refined plan poses; when the refit moved it by more
+/// than ScaleRefitOptions::retrack_change, the plan filter tracks again at the new scale.
+/// Sets result.plan_scale.
+void track_plan_and_refit_scale(const DualMaps& maps, const RobotLog& log,
+                                const DualLocalizerOptions& options, PlanLocation& location,
+                                DualLocalization& result, const DualProgressCallback& progress);
 
 /// The pairs of every scan (result.pairs, result.rejections, ScanRecord::pairs) at the plan
 /// scale result.plan_scale: from the refined poses when `refine`, else the filters' means.

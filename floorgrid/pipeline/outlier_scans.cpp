@@ -10,38 +10,56 @@
 
 namespace floorgrid {
 
-std::size_t reject_outlier_scans(ReferencePairs& pairs, std::vector<std::size_t>& pairs_per_scan,
-                                 const OutlierScanOptions& o) {
-  if (!o.enabled || pairs.size() < 100)
-    return 0;
-  RansacOptions ransac;
-  ransac.inlier_threshold = 0.5;
-  const RansacResult global = ransac_transform(pairs, ransac);
-  if (!global.ok)
-    return 0;
-  const Eigen::Matrix3d& T = global.estimate.T_grid_plan;
-  const Eigen::Index n = pairs.size();
-  Eigen::Matrix2Xd residual(2, n);
-  for (Eigen::Index i = 0; i < n; ++i)
+namespace {
+
+using Cells = std::map<std::pair<long, long>, std::vector<Eigen::Index>>;
+
+// The upper middle value: the consensus is always one of the residuals.
+double upper_median(std::vector<double>& v) {
+  std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
+  return v[v.size() / 2];
+}
+
+/// Each pair's non-rigid residual: its grid point minus the similarity's image of its plan point.
+Eigen::Matrix2Xd residuals(const ReferencePairs& pairs, const Eigen::Matrix3d& T) {
+  Eigen::Matrix2Xd residual(2, pairs.size());
+  for (Eigen::Index i = 0; i < pairs.size(); ++i)
     residual.col(i) =
         pairs.points_in_grid.col(i) -
         (T.topLeftCorner<2, 2>() * pairs.points_in_plan.col(i) + T.topRightCorner<2, 1>());
-  // Which scan each pair came from, and the pairs of each cell.
-  std::vector<std::size_t> scan_of(static_cast<std::size_t>(n));
-  {
-    std::size_t k = 0;
-    for (std::size_t s = 0; s < pairs_per_scan.size(); ++s)
-      for (std::size_t j = 0; j < pairs_per_scan[s] && k < scan_of.size(); ++j)
-        scan_of[k++] = s;
-  }
-  std::map<std::pair<long, long>, std::vector<Eigen::Index>> cells;
-  for (Eigen::Index i = 0; i < n; ++i) {
-    const Eigen::Vector2d p = pairs.points_in_plan.col(i) / o.cell;
+  return residual;
+}
+
+/// Which scan each pair came from.
+std::vector<std::size_t> scan_of_pairs(const std::vector<std::size_t>& pairs_per_scan,
+                                       std::size_t pairs) {
+  std::vector<std::size_t> scan_of(pairs);
+  std::size_t k = 0;
+  for (std::size_t s = 0; s < pairs_per_scan.size(); ++s)
+    for (std::size_t j = 0; j < pairs_per_scan[s] && k < scan_of.size(); ++j)
+      scan_of[k++] = s;
+  return scan_of;
+}
+
+/// The pairs of each plan cell of `cell` metres.
+Cells cells_of(const ReferencePairs& pairs, double cell) {
+  Cells cells;
+  for (Eigen::Index i = 0; i < pairs.size(); ++i) {
+    const Eigen::Vector2d p = pairs.points_in_plan.col(i) / cell;
     cells[{static_cast<long>(std::floor(p.x())), static_cast<long>(std::floor(p.y()))}].push_back(
         i);
   }
-  // Each pair's deviation from the median residual of the other scans' pairs in its cell.
-  std::vector<std::vector<double>> deviations(pairs_per_scan.size());
+  return cells;
+}
+
+/// Per scan: each of its pairs' deviation from the median residual of the other scans' pairs
+/// in its cell (where those are enough for a consensus).
+std::vector<std::vector<double>> deviations_per_scan(const Cells& cells,
+                                                     const Eigen::Matrix2Xd& residual,
+                                                     const std::vector<std::size_t>& scan_of,
+                                                     std::size_t scans,
+                                                     const OutlierScanOptions& options) {
+  std::vector<std::vector<double>> deviations(scans);
   std::vector<double> xs, ys;
   for (const auto& [cell, members] : cells) {
     for (const Eigen::Index i : members) {
@@ -53,25 +71,38 @@ std::size_t reject_outlier_scans(ReferencePairs& pairs, std::vector<std::size_t>
         xs.push_back(residual(0, j));
         ys.push_back(residual(1, j));
       }
-      if (xs.size() < o.min_cell_pairs)
+      if (xs.size() < options.min_cell_pairs)
         continue;
-      const auto median = [](std::vector<double>& v) {
-        std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
-        return v[v.size() / 2];
-      };
-      const Eigen::Vector2d consensus(median(xs), median(ys));
+      const Eigen::Vector2d consensus(upper_median(xs), upper_median(ys));
       deviations[scan_of[static_cast<std::size_t>(i)]].push_back(
           (residual.col(i) - consensus).norm());
     }
   }
+  return deviations;
+}
+
+}  // namespace
+
+std::size_t reject_outlier_scans(ReferencePairs& pairs, std::vector<std::size_t>& pairs_per_scan,
+                                 const OutlierScanOptions& options) {
+  if (!options.enabled || static_cast<std::size_t>(pairs.size()) < options.min_pairs)
+    return 0;
+  RansacOptions ransac;
+  ransac.inlier_threshold = options.similarity_inlier_threshold;
+  const RansacResult global = ransac_transform(pairs, ransac);
+  if (!global.ok)
+    return 0;
+  const Eigen::Index n = pairs.size();
+  const std::vector<std::size_t> scan_of =
+      scan_of_pairs(pairs_per_scan, static_cast<std::size_t>(n));
+  std::vector<std::vector<double>> deviations = deviations_per_scan(
+      cells_of(pairs, options.cell), residuals(pairs, global.estimate.T_grid_plan), scan_of,
+      pairs_per_scan.size(), options);
   // Drop the scans whose median deviation is too large.
   std::vector<std::uint8_t> drop(pairs_per_scan.size(), 0);
   for (std::size_t s = 0; s < deviations.size(); ++s) {
-    std::vector<double>& d = deviations[s];
-    if (d.size() < 5)
-      continue;
-    std::nth_element(d.begin(), d.begin() + static_cast<long>(d.size() / 2), d.end());
-    drop[s] = d[d.size() / 2] > o.max_deviation;
+    if (deviations[s].size() >= options.min_scan_pairs)
+      drop[s] = upper_median(deviations[s]) > options.max_deviation;
   }
   PairCollector kept;
   for (Eigen::Index i = 0; i < n; ++i) {

@@ -17,6 +17,13 @@ struct OutlierScanOptions {
   double max_deviation = 0.15;
   /// Other scans' pairs a cell needs for its consensus to count.
   std::size_t min_cell_pairs = 20;
+  /// Pairs needed at all: fewer are too few to tell a consensus from an outlier.
+  std::size_t min_pairs = 100;
+  /// Metres: the RANSAC inlier distance of the similarity the residuals are taken from (wide:
+  /// it only has to carry the bulk of the map; the residuals keep the bends).
+  double similarity_inlier_threshold = 0.5;
+  /// Pairs of a scan that must have a consensus to compare with before the scan can be dropped.
+  std::size_t min_scan_pairs = 5;
 };
 
 /// Drops the pairs of scans that disagree with the rest (a filter that was wrong, yet

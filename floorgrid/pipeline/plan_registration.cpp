@@ -107,6 +107,67 @@ Pose2 LocalRegistration::plan_pose(const Pose2& pose_in_map) const {
   return {p.x(), p.y(), normalize_angle(pose_in_map.theta + offset_.theta)};
 }
 
+namespace {
+
+/// At most `points` of `cloud`, evenly thinned.
+ScanObservation thin(const ScanObservation& cloud, std::size_t points) {
+  ScanObservation thinned;
+  const std::size_t keep = std::min(cloud.size(), std::max<std::size_t>(1, points));
+  for (std::size_t k = 0; k < keep; ++k) {
+    const std::size_t j = k * cloud.size() / keep;
+    thinned.angle.push_back(cloud.angle[j]);
+    thinned.range.push_back(cloud.range[j]);
+    thinned.end_x.push_back(cloud.end_x[j]);
+    thinned.end_y.push_back(cloud.end_y[j]);
+    thinned.beam.push_back(cloud.beam[j]);
+  }
+  return thinned;
+}
+
+/// Each seeded hypothesis and its neighbours half a lattice step away in every dimension.
+ParticleSet half_step_neighbours(const HypothesisSeeding& seeds, double heading_step,
+                                 double scale_step, double min_scale) {
+  const double step = seeds.position_step;
+  const ParticleSet& p = seeds.particles;
+  const bool with_scale = p.has_scale();
+  ParticleSet candidates;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    for (int dx = -1; dx <= 1; ++dx)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dt = -1; dt <= 1; ++dt)
+          for (int ds = with_scale ? -1 : 0; ds <= (with_scale ? 1 : 0); ++ds) {
+            candidates.x.push_back(p.x[i] + 0.5 * dx * step);
+            candidates.y.push_back(p.y[i] + 0.5 * dy * step);
+            candidates.theta.push_back(normalize_angle(p.theta[i] + 0.5 * dt * heading_step));
+            if (with_scale)
+              candidates.scale.push_back(std::max(min_scale, p.scale[i] + 0.5 * ds * scale_step));
+          }
+  }
+  return candidates;
+}
+
+/// The best-scoring candidate and the score of the best one clearly elsewhere.
+std::pair<std::size_t, double> best_and_runner_up(const ParticleSet& candidates,
+                                                  const std::vector<double>& score,
+                                                  const PlanRegistrationOptions& options) {
+  std::size_t best = 0;
+  for (std::size_t i = 1; i < score.size(); ++i)
+    if (score[i] > score[best])
+      best = i;
+  double runner_up = -std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < score.size(); ++i) {
+    const double distance =
+        std::hypot(candidates.x[i] - candidates.x[best], candidates.y[i] - candidates.y[best]);
+    const double turn = std::abs(normalize_angle(candidates.theta[i] - candidates.theta[best]));
+    if ((distance > options.runner_up_distance || turn > options.runner_up_heading) &&
+        score[i] > runner_up)
+      runner_up = score[i];
+  }
+  return {best, runner_up};
+}
+
+}  // namespace
+
 PlanRegistrationResult register_on_plan(const OccupancyGrid& plan, const ObservationModel& model,
                                         const ScanObservation& submap, const Pose2& submap_origin,
                                         const std::optional<ScaleRange>& scales, double scale,
@@ -122,64 +183,29 @@ PlanRegistrationResult register_on_plan(const OccupancyGrid& plan, const Observa
     }
   }
   // Coarse: the lattice on a thinned cloud.
-  ScanObservation coarse;
-  const std::size_t keep = std::min(cloud.size(), std::max<std::size_t>(1, options.coarse_points));
-  for (std::size_t k = 0; k < keep; ++k) {
-    const std::size_t j = k * cloud.size() / keep;
-    coarse.angle.push_back(cloud.angle[j]);
-    coarse.range.push_back(cloud.range[j]);
-    coarse.end_x.push_back(cloud.end_x[j]);
-    coarse.end_y.push_back(cloud.end_y[j]);
-    coarse.beam.push_back(cloud.beam[j]);
-  }
   const FreeSpaceSampler free_space(plan);
-  Random random(1);
+  Random random(options.seed);
   const HypothesisSeeding seeds =
-      seed_best_hypotheses(free_space, coarse, model, options.seeding, scales, random, threads);
+      seed_best_hypotheses(free_space, thin(cloud, options.coarse_points), model, options.seeding,
+                           scales, random, threads);
   // Fine: each kept hypothesis and its half-step neighbours, scored with every point.
-  const double step = seeds.position_step;
   const double heading_step = 2.0 * std::numbers::pi / std::max(1, options.seeding.headings);
   const double scale_step =
       scales ? (scales->max - scales->min) / std::max(1, options.seeding.scales) : 0.0;
-  ParticleSet candidates;
-  const bool with_scale = seeds.particles.has_scale();
-  for (std::size_t i = 0; i < seeds.particles.size(); ++i) {
-    for (int dx = -1; dx <= 1; ++dx)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dt = -1; dt <= 1; ++dt)
-          for (int ds = with_scale ? -1 : 0; ds <= (with_scale ? 1 : 0); ++ds) {
-            candidates.x.push_back(seeds.particles.x[i] + 0.5 * dx * step);
-            candidates.y.push_back(seeds.particles.y[i] + 0.5 * dy * step);
-            candidates.theta.push_back(
-                normalize_angle(seeds.particles.theta[i] + 0.5 * dt * heading_step));
-            if (with_scale)
-              candidates.scale.push_back(
-                  std::max(1e-3, seeds.particles.scale[i] + 0.5 * ds * scale_step));
-          }
-  }
+  const ParticleSet candidates =
+      half_step_neighbours(seeds, heading_step, scale_step, options.min_scale);
   std::vector<double> score;
   model.log_likelihood(cloud, candidates, score, threads);
+  if (candidates.size() == 0)
+    throw InputError("the plan has no free space to locate the run in", {}, 0, "floorplan");
+  const auto [best, runner_up] = best_and_runner_up(candidates, score, options);
   PlanRegistrationResult result;
   result.hypotheses = seeds.scored + candidates.size();
   result.points = cloud.size();
-  if (candidates.size() == 0)
-    throw InputError("the plan has no free space to locate the run in", {}, 0, "floorplan");
-  std::size_t best = 0;
-  for (std::size_t i = 1; i < score.size(); ++i)
-    if (score[i] > score[best])
-      best = i;
-  const double best_scale = with_scale ? candidates.scale[best] : scale;
-  result.registration = PlanRegistration(submap_origin, candidates.pose(best), best_scale);
+  result.registration = PlanRegistration(submap_origin, candidates.pose(best),
+                                         candidates.has_scale() ? candidates.scale[best] : scale);
   result.log_likelihood = score[best];
-  result.runner_up_log_likelihood = -std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < score.size(); ++i) {
-    const double distance =
-        std::hypot(candidates.x[i] - candidates.x[best], candidates.y[i] - candidates.y[best]);
-    if ((distance > 2.0 ||
-         std::abs(normalize_angle(candidates.theta[i] - candidates.theta[best])) > 0.5) &&
-        score[i] > result.runner_up_log_likelihood)
-      result.runner_up_log_likelihood = score[i];
-  }
+  result.runner_up_log_likelihood = runner_up;
   return result;
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <span>
 #include <vector>
@@ -42,6 +43,12 @@ struct PlanRegistrationOptions {
   /// `seeding.keep` are then rescored with every point, each refined over a 3 x 3 x 3 x 3
   /// sub-lattice of half steps, and the best wins.
   std::size_t coarse_points = 1500;
+  /// The runner-up is the best hypothesis farther than this (metres) or turned more than
+  /// runner_up_heading (radians) from the best: how clearly the best won.
+  double runner_up_distance = 2.0;
+  double runner_up_heading = 0.5;  ///< radians
+  double min_scale = 1e-3;         ///< refined scales are kept above this
+  std::uint64_t seed = 1;          ///< randomness of the lattice's seeding
 };
 
 /// Where a run lies on a plan: the plan pose and scale of one robot pose of the run, so that

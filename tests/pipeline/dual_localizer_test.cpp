@@ -54,8 +54,13 @@ TEST(DualLocalizer, WrongStartIsDetectedAsDivergenceAndPairsWaitForRecovery) {
   StartPoses start = manifest_start(d);
   // The gridmap filter starts 3 m and 90 degrees off.
   start.grid = start.grid.compose({3.0, 0.0, 1.57});
-  const DualLocalization r = localize_dual(d.plan_grid, d.gridmap, log, start,
-                                           d.manifest.floorplan_scale, {}, {}, &*d.plan);
+  const DualLocalization r = localize_dual({.plan = d.plan_grid,
+                                            .gridmap = d.gridmap,
+                                            .log = log,
+                                            .start = start,
+                                            .plan_scale = d.manifest.floorplan_scale,
+                                            .plan_geometry = &*d.plan});
+  ASSERT_TRUE(r.status.ok) << r.status.message;
   EXPECT_GE(r.grid_divergences.total, 1u) << "the wrong start was not caught";
   // No scan makes pairs before the gridmap filter has found itself again, and the scans with
   // pairs are all after its recovery.
@@ -76,8 +81,12 @@ TEST(DualLocalizer, NanReadingsAreSkippedNotPaired) {
   for (std::size_t i = 0; i < log.scans.size(); i += 3)
     for (std::size_t k = 0; k < log.scans[i].ranges.size(); k += 5)
       log.scans[i].ranges[k] = std::numeric_limits<float>::quiet_NaN();
-  const DualLocalization r = localize_dual(d.plan_grid, d.gridmap, log, manifest_start(d),
-                                           d.manifest.floorplan_scale, {}, {}, &*d.plan);
+  const DualLocalization r = localize_dual({.plan = d.plan_grid,
+                                            .gridmap = d.gridmap,
+                                            .log = log,
+                                            .start = manifest_start(d),
+                                            .plan_scale = d.manifest.floorplan_scale,
+                                            .plan_geometry = &*d.plan});
   ASSERT_GT(r.pairs.size(), 100);
   EXPECT_TRUE(r.pairs.points_in_plan.allFinite());
   EXPECT_TRUE(r.pairs.points_in_grid.allFinite());
@@ -88,8 +97,8 @@ TEST(DualLocalizer, NanReadingsAreSkippedNotPaired) {
 TEST(DualLocalizer, FindsBothStartsAndTheScaleWithoutAnyStart) {
   const io::LoadedDataset& d = office();
   const RobotLog log = first_scans(*d.log, 1200);
-  const DualLocalization r =
-      localize_dual(d.plan_grid, d.gridmap, log, std::nullopt, std::nullopt, {}, {}, &*d.plan);
+  const DualLocalization r = localize_dual(
+      {.plan = d.plan_grid, .gridmap = d.gridmap, .log = log, .plan_geometry = &*d.plan});
   ASSERT_TRUE(r.registration.has_value());
   // The two starts found are the same place: the exact warp takes the plan start onto the
   // gridmap start.
@@ -101,13 +110,54 @@ TEST(DualLocalizer, FindsBothStartsAndTheScaleWithoutAnyStart) {
   EXPECT_LE(median_pair_error(d, r.pairs), 0.05);
 }
 
-TEST(DualLocalizer, RejectsTooShortLogsAndBadScales) {
+TEST(DualLocalizer, RejectsTooShortLogsBadScalesAndLogsWithoutReturns) {
   const io::LoadedDataset& d = office();
+  const RobotLog one = first_scans(*d.log, 1);
+  EXPECT_THROW(localize_dual({.plan = d.plan_grid, .gridmap = d.gridmap, .log = one}), InputError);
+  const RobotLog ten = first_scans(*d.log, 10);
   EXPECT_THROW(
-      localize_dual(d.plan_grid, d.gridmap, first_scans(*d.log, 1), std::nullopt, std::nullopt),
+      localize_dual({.plan = d.plan_grid, .gridmap = d.gridmap, .log = ten, .plan_scale = -1.0}),
       InputError);
-  EXPECT_THROW(localize_dual(d.plan_grid, d.gridmap, first_scans(*d.log, 10), std::nullopt, -1.0),
-               InputError);
+  RobotLog blind = ten;
+  for (LaserScan& scan : blind.scans)
+    std::fill(scan.ranges.begin(), scan.ranges.end(), std::numeric_limits<float>::quiet_NaN());
+  try {
+    localize_dual({.plan = d.plan_grid, .gridmap = d.gridmap, .log = blind});
+    ADD_FAILURE() << "a log without returns was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "log");
+  }
+}
+
+TEST(DualLocalizer, AGridmapFilterThatNeverConvergesIsReportedNotThrown) {
+  const io::LoadedDataset& d = office();
+  // The gridmap at a hundredth of its resolution: nothing of the run fits it.
+  GridGeometry geometry = d.gridmap.geometry();
+  geometry.resolution *= 100.0;
+  OccupancyGrid wrong(geometry);
+  for (int iy = 0; iy < geometry.height; ++iy)
+    for (int ix = 0; ix < geometry.width; ++ix)
+      wrong.set_state(ix, iy, d.gridmap.state(ix, iy));
+  const RobotLog log = first_scans(*d.log, 30);
+  DualLocalizerOptions options;
+  options.gridmap_localization.max_global_scans = 20;
+  for (const bool with_start : {false, true}) {
+    const DualLocalization r = localize_dual(
+        {.plan = d.plan_grid,
+         .gridmap = wrong,
+         .log = log,
+         .start = with_start ? std::optional<StartPoses>(manifest_start(d)) : std::nullopt,
+         .plan_geometry = &*d.plan},
+        options);
+    EXPECT_FALSE(r.status.ok);
+    EXPECT_EQ(r.pairs.size(), 0);
+    EXPECT_NE(r.status.message.find("did not converge within 20 scans"), std::string::npos)
+        << r.status.message;
+    // With a start, the message blames the start, not the lack of one.
+    EXPECT_EQ(r.status.field, with_start ? "initial_pose" : "gridmap");
+    EXPECT_EQ(r.status.message.find("or give initial_pose") == std::string::npos, with_start)
+        << r.status.message;
+  }
 }
 
 }  // namespace

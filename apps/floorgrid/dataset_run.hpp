@@ -1,0 +1,24 @@
+#pragma once
+
+#include <optional>
+
+#include "floorgrid/io/dataset_loader.hpp"
+#include "floorgrid/pipeline/dual_localizer.hpp"
+
+namespace floorgrid::app {
+
+/// The manifest's initial poses, when it gives them.
+std::optional<StartPoses> start_poses(const io::LoadedDataset& dataset);
+
+/// The dataset's log; InputError naming the manifest when it has none.
+const RobotLog& dataset_log(const io::LoadedDataset& dataset);
+
+/// What the dual localization of a dataset works on (`dataset` must outlive it).
+DualLocalizerInputs dual_inputs(const io::LoadedDataset& dataset);
+
+/// A localization that failed is bad input at the CLI (a wrong map resolution or origin, a
+/// wrong initial pose, a log of another building): InputError naming the manifest and the
+/// field the status blames.
+void require_localized(const LocalizationStatus& status, const io::LoadedDataset& dataset);
+
+}  // namespace floorgrid::app

@@ -1,0 +1,88 @@
+#include "floorgrid/pipeline/dual_maps.hpp"
+
+#include <chrono>
+
+namespace floorgrid {
+
+namespace {
+
+// Progress is reported every this many scans: often enough for a live line, rarely enough to
+// cost nothing.
+constexpr std::size_t kProgressEveryScans = 25;
+
+/// The plan as a robot inside sees it (the unseen faces of walls drawn as two lines dropped).
+VisibleWalls find_visible_walls(const OccupancyGrid& plan, const PlanLocationOptions& options,
+                                std::vector<std::string>& notes) {
+  if (!options.visible_walls_only)
+    return {};
+  VisibleWalls visible = visible_walls(plan, options.visible);
+  if (!visible.applied)
+    notes.push_back("the plan has no closed inside: every drawn wall is used");
+  return visible;
+}
+
+/// The plan's walls to match scans onto: a DXF plan's exact walls when given, else the plan
+/// grid's occupied cells; one-sided where the visible walls found the rooms.
+WallField plan_wall_field(const DualLocalizerInputs& inputs, const OccupancyGrid& plan,
+                          const VisibleWalls& visible, const WallFieldOptions& options) {
+  const std::vector<std::uint8_t>* rooms = visible.applied ? &visible.room : nullptr;
+  if (inputs.plan_geometry) {
+    return WallField(*inputs.plan_geometry, plan.geometry(), options,
+                     visible.applied ? &visible.grid : nullptr, rooms);
+  }
+  return WallField(plan, options, rooms);
+}
+
+}  // namespace
+
+MapModel::MapModel(const OccupancyGrid& map, const LikelihoodFieldOptions& likelihood,
+                   ObservationModelKind kind, const BeamModelOptions& beam)
+    : field_(std::make_unique<LikelihoodFieldModel>(map, likelihood)) {
+  if (kind == ObservationModelKind::beam)
+    beam_ = std::make_unique<BeamModel>(map, beam);
+}
+
+const ObservationModel& MapModel::model() const {
+  return beam_ ? static_cast<const ObservationModel&>(*beam_) : *field_;
+}
+
+DualMaps::DualMaps(const DualLocalizerInputs& inputs, const DualLocalizerOptions& options,
+                   std::vector<std::string>& notes)
+    : visible_(find_visible_walls(inputs.plan, options.plan_location, notes)),
+      plan_(visible_.applied ? &visible_.grid : &inputs.plan),
+      gridmap_(inputs.gridmap),
+      plan_model_(*plan_, options.plan.likelihood, options.plan.model, options.beam),
+      grid_model_(gridmap_, options.grid.likelihood, options.grid.model, options.beam),
+      plan_walls_(plan_wall_field(inputs, *plan_, visible_, options.walls)),
+      grid_walls_(gridmap_, options.walls),
+      plan_observations_(prepare_observations(inputs.log, options.plan.observation)),
+      grid_observations_(prepare_observations(inputs.log, options.grid.observation)) {
+  if (options.plan_beam_consistency)
+    plan_rays_.emplace(*plan_);
+}
+
+std::vector<ScanObservation> prepare_observations(const RobotLog& log,
+                                                  const ObservationOptions& options) {
+  std::vector<ScanObservation> observations;
+  observations.reserve(log.scans.size());
+  for (const LaserScan& scan : log.scans)
+    observations.push_back(make_observation(scan, options));
+  return observations;
+}
+
+void report_progress(const DualProgressCallback& progress, const char* phase, std::size_t done,
+                     std::size_t total, bool converged, std::size_t pairs) {
+  if (progress && (done % kProgressEveryScans == 0 || done == total))
+    progress({phase, done, total, converged, pairs});
+}
+
+void count_divergence(DivergenceCount& count, const std::string& reason) {
+  ++count.total;
+  ++count.by_reason[reason];
+}
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace floorgrid

@@ -1,0 +1,83 @@
+#pragma once
+
+#include <chrono>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "floorgrid/localization/beam_model.hpp"
+#include "floorgrid/localization/likelihood_field_model.hpp"
+#include "floorgrid/localization/ray_marching.hpp"
+#include "floorgrid/localization/scan_observation.hpp"
+#include "floorgrid/localization/wall_field.hpp"
+#include "floorgrid/maps/visible_walls.hpp"
+#include "floorgrid/pipeline/dual_localizer.hpp"
+
+namespace floorgrid {
+
+/// One map's observation model: the likelihood field always (global seeding scores millions of
+/// hypotheses with it), and the beam model when chosen.
+class MapModel {
+ public:
+  MapModel(const OccupancyGrid& map, const LikelihoodFieldOptions& likelihood,
+           ObservationModelKind kind, const BeamModelOptions& beam);
+  /// The chosen model.
+  const ObservationModel& model() const;
+  /// The likelihood field.
+  const LikelihoodFieldModel& field() const { return *field_; }
+
+ private:
+  std::unique_ptr<LikelihoodFieldModel> field_;
+  std::unique_ptr<BeamModel> beam_;
+};
+
+/// Both maps prepared for the dual localization: the plan as a robot inside sees it, each
+/// map's observation model, walls to match scans onto, and every scan prepared for each
+/// filter. Built once, read by every step.
+class DualMaps {
+ public:
+  /// Prepares `inputs`' maps with `options`; what it decides goes to `notes`.
+  DualMaps(const DualLocalizerInputs& inputs, const DualLocalizerOptions& options,
+           std::vector<std::string>& notes);
+  DualMaps(const DualMaps&) = delete;
+  DualMaps& operator=(const DualMaps&) = delete;
+
+  const OccupancyGrid& plan() const { return *plan_; }         ///< the plan the filters localize on
+  const OccupancyGrid& gridmap() const { return gridmap_; }    ///< the robot's map
+  const MapModel& plan_model() const { return plan_model_; }   ///< the plan filter's model
+  const MapModel& grid_model() const { return grid_model_; }   ///< the gridmap filter's model
+  const WallField& plan_walls() const { return plan_walls_; }  ///< the plan's walls
+  const WallField& grid_walls() const { return grid_walls_; }  ///< the gridmap's walls
+  /// The plan's ray caster for beam-consistent matching, or null when not used.
+  const GridRayCaster* plan_rays() const { return plan_rays_ ? &*plan_rays_ : nullptr; }
+  /// Scan i prepared for the plan filter's model.
+  const std::vector<ScanObservation>& plan_observations() const { return plan_observations_; }
+  /// Scan i prepared for the gridmap filter's model.
+  const std::vector<ScanObservation>& grid_observations() const { return grid_observations_; }
+
+ private:
+  VisibleWalls visible_;
+  const OccupancyGrid* plan_;
+  const OccupancyGrid& gridmap_;
+  MapModel plan_model_, grid_model_;
+  WallField plan_walls_, grid_walls_;
+  std::optional<GridRayCaster> plan_rays_;
+  std::vector<ScanObservation> plan_observations_, grid_observations_;
+};
+
+/// Every scan of `log` prepared with `options`.
+std::vector<ScanObservation> prepare_observations(const RobotLog& log,
+                                                  const ObservationOptions& options);
+
+/// Reports progress every few scans (and at the last).
+void report_progress(const DualProgressCallback& progress, const char* phase, std::size_t done,
+                     std::size_t total, bool converged, std::size_t pairs = 0);
+
+/// Counts one divergence of a filter under `reason`.
+void count_divergence(DivergenceCount& count, const std::string& reason);
+
+/// Seconds of wall clock since `start`.
+double seconds_since(std::chrono::steady_clock::time_point start);
+
+}  // namespace floorgrid

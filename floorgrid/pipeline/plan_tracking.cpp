@@ -1,0 +1,81 @@
+#include "floorgrid/pipeline/plan_tracking.hpp"
+
+#include <cmath>
+
+#include "floorgrid/pipeline/dual_pairs.hpp"
+
+namespace floorgrid {
+
+DualCheck::DualCheck(const DualCheckOptions& options, const PlanRegistration& global, double scale)
+    : options_(options), global_(global), scale_(scale), local_(options.local_window, scale) {}
+
+std::optional<PlanRestart> DualCheck::judge(std::size_t scan, ScanRecord& record) {
+  const FilterRecord& plan = record.plan;
+  const FilterRecord& grid = record.grid;
+  const bool near = local_.fresh(scan, options_.local_min_pairs, options_.local_max_age);
+  const Pose2 grid_pose = grid.matched ? grid.match.pose : grid.pose;
+  const Pose2 expected = near ? local_.plan_pose(grid_pose) : global_.plan_pose(grid_pose);
+  const Pose2 plan_pose = plan.matched ? plan.match.pose : plan.pose;
+  const double off = (plan_pose.translation() - expected.translation()).norm();
+  const double turned = std::abs(normalize_angle(plan_pose.theta - expected.theta));
+  record.consistent =
+      near ? off <= options_.local_distance && turned <= options_.local_heading
+           : off <= options_.consistency_distance && turned <= options_.consistency_heading;
+  const bool agrees = near ? off <= options_.local_reinitialize_distance &&
+                                 turned <= options_.local_reinitialize_heading
+                           : record.consistent;
+  if (plan.converged && record.consistent && plan.match.ok() && grid.match.ok())
+    local_.add(scan, grid.match.pose, plan.match.pose);
+  disagreeing_ = plan.converged && !agrees ? disagreeing_ + 1 : 0;
+  unconverged_ = plan.converged ? 0 : unconverged_ + 1;
+  if (disagreeing_ < options_.consistency_scans && unconverged_ < options_.reconverge_scans)
+    return std::nullopt;
+  PlanRestart restart{
+      .reason = disagreeing_ >= options_.consistency_scans ? "inconsistent" : "unconverged",
+      .start = plan_start(
+          expected, near ? options_.local_reinitialize_sigma : options_.reinitialize_sigma,
+          near ? options_.local_reinitialize_heading_sigma : options_.reinitialize_heading_sigma,
+          scale_, 0.0)};
+  disagreeing_ = unconverged_ = 0;
+  return restart;
+}
+
+void track_plan(const DualMaps& maps, const RobotLog& log, const DualLocalizerOptions& options,
+                const PlanLocation& location, DualLocalization& result,
+                const DualProgressCallback& progress) {
+  result.plan_divergences = {};
+  std::uint64_t seed = stream_seed(options.seed, SeedStream::plan_filter);
+  ParticleFilter filter(options.plan.filter, seed);
+  filter.initialize_tracking(plan_start(result.start.plan, location.start_sigma,
+                                        location.start_heading_sigma, location.scale, 0.0),
+                             maps.plan());
+  FilterRunner runner(std::move(filter), maps.plan_model().model(), maps.plan_walls(), log,
+                      maps.plan_observations(), options.plan.runner, maps.plan_rays());
+  DualCheck check(options.dual_check, location.registration, location.scale);
+  const std::size_t n = log.scans.size();
+  std::size_t usable = 0;
+  for (std::size_t i = result.plan_start_scan; i < n; ++i) {
+    ScanRecord& record = result.scans[i];
+    record.plan_reinitialized = false;
+    record.consistent = true;
+    record.plan = runner.step(i);
+    if (record.plan.diverged) {
+      count_divergence(result.plan_divergences,
+                       std::string(to_string(runner.filter().status().divergence.reason)));
+    }
+    if (record.grid.converged) {
+      if (const std::optional<PlanRestart> restart = check.judge(i, record)) {
+        count_divergence(result.plan_divergences, restart->reason);
+        runner.filter() = ParticleFilter(options.plan.filter, ++seed);
+        runner.filter().initialize_tracking(restart->start, maps.plan());
+        record.plan_reinitialized = true;
+      }
+    }
+    usable += usable_for_pairs(record, options.refine_poses);
+    report_progress(progress, "plan", i + 1, n, record.plan.converged, usable);
+  }
+  result.plan_corrections = runner.corrections();
+  result.tracking_evaluations += runner.evaluations();
+}
+
+}  // namespace floorgrid

@@ -1,0 +1,45 @@
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "floorgrid/pipeline/plan_location.hpp"
+
+namespace floorgrid {
+
+/// Why and where the dual check re-initializes the plan filter.
+struct PlanRestart {
+  std::string reason;   ///< "inconsistent" or "unconverged"
+  TrackingStart start;  ///< the new cloud
+};
+
+/// The dual check while the plan filter tracks: the plan pose must agree with the gridmap
+/// pose through the registration near the robot (a LocalRegistration of the last scans where
+/// both filters were sure) or, without one, the global registration. A plan filter that keeps
+/// disagreeing, or stays unconverged, is re-initialized where the gridmap filter says.
+class DualCheck {
+ public:
+  /// The check at the plan scale `scale` against `global` (gridmap poses -> plan poses).
+  DualCheck(const DualCheckOptions& options, const PlanRegistration& global, double scale);
+
+  /// Judges scan `scan` (the gridmap filter converged on it): sets record.consistent and
+  /// returns where to re-initialize the plan filter when it should be.
+  std::optional<PlanRestart> judge(std::size_t scan, ScanRecord& record);
+
+ private:
+  const DualCheckOptions& options_;
+  const PlanRegistration& global_;
+  double scale_;
+  LocalRegistration local_;
+  int disagreeing_ = 0;  // consecutive scans the converged plan filter disagreed
+  int unconverged_ = 0;  // consecutive scans the plan filter was not converged
+};
+
+/// Step 4 of localize_dual: the plan filter tracks the log at `scale` from the plan's start,
+/// checked against the gridmap filter scan by scan (DualCheck). Fills every ScanRecord::plan,
+/// consistent and plan_reinitialized, and the plan filter's divergences and corrections.
+void track_plan(const DualMaps& maps, const RobotLog& log, const DualLocalizerOptions& options,
+                const PlanLocation& location, DualLocalization& result,
+                const DualProgressCallback& progress);
+
+}  // namespace floorgrid

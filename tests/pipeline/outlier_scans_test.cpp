@@ -1,0 +1,88 @@
+#include "floorgrid/pipeline/outlier_scans.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "floorgrid/core/random.hpp"
+
+namespace floorgrid {
+namespace {
+
+/// 60 scans of 40 pairs each along the walls of a 20 m x 10 m box, the grid the plan through a
+/// similarity with 1 cm of noise; the pairs of `shifted` scans moved by `shift` in the grid.
+ReferencePairs scans_of_pairs(const std::vector<std::size_t>& shifted, const Eigen::Vector2d& shift,
+                              std::vector<std::size_t>& per_scan) {
+  Random random(5);
+  const double c = std::cos(0.2), s = std::sin(0.2);
+  std::vector<Eigen::Vector2d> plan, grid;
+  per_scan.assign(60, 40);
+  for (std::size_t scan = 0; scan < 60; ++scan) {
+    // Each scan sees the stretch of wall around its place along the box's perimeter (60 m),
+    // overlapping its neighbours'.
+    const double start = static_cast<double>(scan);
+    for (int k = 0; k < 40; ++k) {
+      double u = std::fmod(start + 0.1 * k, 60.0);
+      Eigen::Vector2d p;
+      if (u < 20)
+        p = {u, 0.0};
+      else if (u < 30)
+        p = {20.0, u - 20.0};
+      else if (u < 50)
+        p = {50.0 - u, 10.0};
+      else
+        p = {0.0, 60.0 - u};
+      Eigen::Vector2d q(2.0 + 1.05 * (c * p.x() - s * p.y()),
+                        -1.0 + 1.05 * (s * p.x() + c * p.y()));
+      q += Eigen::Vector2d(random.normal(0.01), random.normal(0.01));
+      if (std::find(shifted.begin(), shifted.end(), scan) != shifted.end())
+        q += shift;
+      plan.push_back(p);
+      grid.push_back(q);
+    }
+  }
+  ReferencePairs pairs;
+  pairs.points_in_plan.resize(2, static_cast<Eigen::Index>(plan.size()));
+  pairs.points_in_grid.resize(2, static_cast<Eigen::Index>(grid.size()));
+  for (std::size_t i = 0; i < plan.size(); ++i) {
+    pairs.points_in_plan.col(static_cast<Eigen::Index>(i)) = plan[i];
+    pairs.points_in_grid.col(static_cast<Eigen::Index>(i)) = grid[i];
+  }
+  return pairs;
+}
+
+TEST(OutlierScans, DropsTheScanThatDisagreesAndKeepsTheRest) {
+  std::vector<std::size_t> per_scan;
+  ReferencePairs pairs = scans_of_pairs({17}, {0.5, 0.0}, per_scan);
+  const ReferencePairs before = pairs;
+  EXPECT_EQ(reject_outlier_scans(pairs, per_scan), 1u);
+  EXPECT_EQ(per_scan[17], 0u);
+  for (std::size_t s = 0; s < per_scan.size(); ++s) {
+    if (s != 17) {
+      EXPECT_EQ(per_scan[s], 40u) << s;
+    }
+  }
+  ASSERT_EQ(pairs.size(), before.size() - 40);
+  // The kept pairs are the others, in order.
+  EXPECT_TRUE(
+      pairs.points_in_plan.leftCols(17 * 40).isApprox(before.points_in_plan.leftCols(17 * 40)));
+  EXPECT_TRUE(
+      pairs.points_in_grid.rightCols(42 * 40).isApprox(before.points_in_grid.rightCols(42 * 40)));
+}
+
+TEST(OutlierScans, KeepsConsistentScansAndHonoursItsLimits) {
+  std::vector<std::size_t> per_scan;
+  ReferencePairs pairs = scans_of_pairs({}, Eigen::Vector2d::Zero(), per_scan);
+  EXPECT_EQ(reject_outlier_scans(pairs, per_scan), 0u);
+  EXPECT_EQ(pairs.size(), 2400);
+  // Disabled, or too few pairs: nothing is dropped.
+  ReferencePairs shifted = scans_of_pairs({3}, {0.5, 0.0}, per_scan);
+  EXPECT_EQ(reject_outlier_scans(shifted, per_scan, {.enabled = false}), 0u);
+  EXPECT_EQ(reject_outlier_scans(shifted, per_scan, {.min_pairs = 10000}), 0u);
+  // A shift within max_deviation (0.15 m) is not an outlier.
+  ReferencePairs small = scans_of_pairs({3}, {0.1, 0.0}, per_scan);
+  EXPECT_EQ(reject_outlier_scans(small, per_scan), 0u);
+}
+
+}  // namespace
+}  // namespace floorgrid
