@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "floorgrid/core/statistics.hpp"
 #include "floorgrid/geometry/convex_hull.hpp"
 #include "floorgrid/maps/distance_field.hpp"
 
@@ -58,19 +59,13 @@ ErrorStatistics error_statistics(std::vector<double> errors) {
   s.count = errors.size();
   if (errors.empty())
     return s;
-  std::sort(errors.begin(), errors.end());
+  std::sort(errors.begin(), errors.end());  // the sum in ascending order: the smallest first
   double sum = 0.0;
   for (const double e : errors)
     sum += e;
   s.mean = sum / static_cast<double>(errors.size());
-  const auto at = [&](double q) {
-    const double position = q * static_cast<double>(errors.size() - 1);
-    const auto lo = static_cast<std::size_t>(std::floor(position));
-    const std::size_t hi = std::min(lo + 1, errors.size() - 1);
-    return errors[lo] + (position - static_cast<double>(lo)) * (errors[hi] - errors[lo]);
-  };
-  s.median = at(0.5);
-  s.p95 = at(0.95);
+  s.median = quantile(errors, 0.5);
+  s.p95 = quantile(errors, 0.95);
   s.max = errors.back();
   return s;
 }

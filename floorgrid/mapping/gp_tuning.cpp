@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "floorgrid/core/error.hpp"
+#include "floorgrid/core/statistics.hpp"
 #include "floorgrid/mapping/gp_likelihood.hpp"
 
 namespace floorgrid {
@@ -37,9 +38,7 @@ double median_nearest_neighbour_distance(Eigen::Ref<const Eigen::Matrix2Xd> poin
     d2[i] = std::numeric_limits<double>::infinity();
     nearest[static_cast<std::size_t>(i)] = std::sqrt(d2.minCoeff());
   }
-  const auto middle = nearest.begin() + static_cast<std::ptrdiff_t>(nearest.size() / 2);
-  std::nth_element(nearest.begin(), middle, nearest.end());
-  return *middle;
+  return upper_median(std::move(nearest));
 }
 
 double extent(Eigen::Ref<const Eigen::Matrix2Xd> points) {

@@ -6,20 +6,11 @@
 
 #include "floorgrid/core/error.hpp"
 #include "floorgrid/core/random.hpp"
+#include "floorgrid/core/statistics.hpp"
 #include "floorgrid/mapping/mapping_factory.hpp"
 #include "floorgrid/mapping/model_file.hpp"
 
 namespace floorgrid {
-
-namespace {
-double median_of(std::vector<double> v) {
-  if (v.empty())
-    return std::numeric_limits<double>::infinity();
-  const std::size_t mid = v.size() / 2;
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(mid), v.end());
-  return v[mid];
-}
-}  // namespace
 
 CrossValidationResult cross_validate(const MappingOptions& options, const ReferencePairs& given,
                                      const CrossValidationOptions& cv) {
@@ -71,7 +62,7 @@ CrossValidationResult cross_validate(const MappingOptions& options, const Refere
   for (const double e : errors)
     sum += e;
   result.mean_error_m = sum / static_cast<double>(errors.size());
-  result.median_error_m = median_of(errors);
+  result.median_error_m = errors.empty() ? std::numeric_limits<double>::infinity() : upper_median(errors);
   return result;
 }
 

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "floorgrid/core/error.hpp"
+#include "floorgrid/core/statistics.hpp"
 
 namespace floorgrid {
 
@@ -113,16 +114,6 @@ ReferencePairs merge_duplicates(const ReferencePairs& pairs, DuplicateMerge* rep
 }
 
 namespace {
-
-double median(std::vector<double> values) {
-  const std::size_t mid = values.size() / 2;
-  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(mid), values.end());
-  const double upper = values[mid];
-  if (values.size() % 2 == 1)
-    return upper;
-  return 0.5 * (upper + *std::max_element(values.begin(),
-                                          values.begin() + static_cast<std::ptrdiff_t>(mid)));
-}
 
 /// The square cells of side `cell` over the plan points, from `origin`.
 struct Binning {

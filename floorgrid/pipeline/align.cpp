@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 
+#include "floorgrid/core/statistics.hpp"
 #include "floorgrid/geometry/point_index.hpp"
 #include "floorgrid/mapping/model_selection.hpp"
 #include "floorgrid/maps/distance_field.hpp"
@@ -15,16 +16,6 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-// The upper middle value (the middle of an odd count, the larger middle of an even one): the
-// wall distances are cell-quantized, and this keeps their median one of them.
-double upper_median(std::vector<double> v) {
-  if (v.empty())
-    return 0.0;
-  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
-  std::nth_element(v.begin(), mid, v.end());
-  return *mid;
 }
 
 /// The truth and the name of its domain: a simulator's warp, or the hand-picked pairs through
@@ -122,9 +113,9 @@ WallDistance wall_distance(const Eigen::Matrix2Xd& samples, const Eigen::Matrix2
       near_distances.push_back(d);
   }
   w.points = w.distances.size();
-  w.median_m = upper_median(w.distances);
+  w.median_m = w.distances.empty() ? 0.0 : upper_median(w.distances);
   w.near_points = near_distances.size();
-  w.near_median_m = upper_median(near_distances);
+  w.near_median_m = near_distances.empty() ? 0.0 : upper_median(near_distances);
   return w;
 }
 

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <map>
 
+#include "floorgrid/core/statistics.hpp"
 #include "floorgrid/geometry/ransac.hpp"
 #include "floorgrid/localization/pair_extraction.hpp"
 
@@ -13,12 +14,6 @@ namespace floorgrid {
 namespace {
 
 using Cells = std::map<std::pair<long, long>, std::vector<Eigen::Index>>;
-
-// The upper middle value: the consensus is always one of the residuals.
-double upper_median(std::vector<double>& v) {
-  std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
-  return v[v.size() / 2];
-}
 
 /// Each pair's non-rigid residual: its grid point minus the similarity's image of its plan point.
 Eigen::Matrix2Xd residuals(const ReferencePairs& pairs, const Eigen::Matrix3d& T) {

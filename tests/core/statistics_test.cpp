@@ -23,6 +23,13 @@ TEST(Median, EmptyIsNaN) {
   EXPECT_TRUE(std::isnan(median({})));
 }
 
+TEST(UpperMedian, IsAlwaysOneOfTheValues) {
+  EXPECT_DOUBLE_EQ(upper_median({5.0, 1.0, 3.0}), 3.0);
+  EXPECT_DOUBLE_EQ(upper_median({4.0, 1.0, 3.0, 2.0}), 3.0);
+  EXPECT_DOUBLE_EQ(upper_median({0.05, 0.10}), 0.10);
+  EXPECT_TRUE(std::isnan(upper_median({})));
+}
+
 TEST(Quantile, InterpolatesBetweenSortedValuesLikeNumpy) {
   // numpy.quantile([1, 2, 3, 4], [0, 0.25, 0.5, 0.95, 1]) = 1, 1.75, 2.5, 3.85, 4
   const std::vector<double> v{4.0, 2.0, 1.0, 3.0};
