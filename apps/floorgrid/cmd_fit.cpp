@@ -8,6 +8,7 @@
 #include "floorgrid/io/atomic_file.hpp"
 #include "floorgrid/io/model_io.hpp"
 #include "floorgrid/io/pairs_csv.hpp"
+#include "floorgrid/io/value_json.hpp"
 #include "floorgrid/mapping/mapping_factory.hpp"
 
 namespace floorgrid::app {
@@ -78,8 +79,8 @@ void add_fit_command(CLI::App& root) {
     if (f.inliers)
       fmt::print("inliers   {} of {}\n", *f.inliers, f.pairs_used);
     fmt::print("rms       {:.4f} m ({:.4g} units)\n", f.rms_m, f.rms_m / args->unit);
-    if (!f.details.empty())
-      fmt::print("details   {}\n", f.details.dump());
+    if (f.details.size() > 0)
+      fmt::print("details   {}\n", io::dump_json(f.details, -1));
     fmt::print("time      {:.3f} s\n", f.seconds);
     if (f.cv_error_m) {
       fmt::print("cv error  {:.4f} m ({:.4g} units, {}-fold)\n", *f.cv_error_m,

@@ -4,6 +4,11 @@
 
 namespace floorgrid {
 
+/// Metres: a coordinate farther than this from its frame's origin is not physical (a building
+/// spans a few kilometres; this is a quarter of the Earth's circumference). Pairs, points and
+/// model files beyond it are refused: squared distances of such values overflow.
+inline constexpr double kMaxCoordinate = 1e7;
+
 /// Reference pairs: column i of `points_in_plan` corresponds to column i of `points_in_grid`.
 /// Metres in both frames; `weights` is empty (every pair weighs 1) or holds one weight per pair.
 struct ReferencePairs {

@@ -21,7 +21,7 @@ GaussianProcessMapping::~GaussianProcessMapping() = default;
 
 void GaussianProcessMapping::fit_model(const ReferencePairs& pairs, FitSummary& summary) {
   Eigen::Matrix2Xd outputs = pairs.points_in_grid;
-  nlohmann::json global = nullptr;
+  Value global;
   if (global_) {
     // eq. 4.17-4.18: the residuals of the global transform are what the GP learns.
     const RansacResult gt = ransac_transform(pairs, ransac_);
@@ -30,7 +30,7 @@ void GaussianProcessMapping::fit_model(const ReferencePairs& pairs, FitSummary& 
     T_grid_plan_ = gt.estimate.T_grid_plan;
     outputs -= (T_grid_plan_.topLeftCorner<2, 2>() * pairs.points_in_plan).colwise() +
                T_grid_plan_.topRightCorner<2, 1>();
-    global = {{"T_grid_plan", model_json::matrix(T_grid_plan_)},
+    global = {{"T_grid_plan", model_fields::matrix(T_grid_plan_)},
               {"inliers", gt.inlier_count},
               {"rms_m", gt.estimate.rms}};
   }
@@ -45,7 +45,7 @@ void GaussianProcessMapping::fit_model(const ReferencePairs& pairs, FitSummary& 
        "squared exponential, a length scale per plan axis, shared by both grid coordinates"},
       {"mean", global_ ? "global similarity (gt) plus the GP of its residuals"
                        : "constant (the outputs' mean)"},
-      {"length_scale_m", {h.length_scale.x(), h.length_scale.y()}},
+      {"length_scale_m", Value::array({h.length_scale.x(), h.length_scale.y()})},
       {"signal_std_m", h.signal_std},
       {"noise_std_m", h.noise_std},
       {"tuned", s.tuned},
@@ -57,9 +57,9 @@ void GaussianProcessMapping::fit_model(const ReferencePairs& pairs, FitSummary& 
       {"iterations", s.iterations},
       {"converged", s.converged},
       {"log_marginal_likelihood", s.log_marginal_likelihood},
-      {"at_bounds", s.at_bounds},
+      {"at_bounds", Value(s.at_bounds)},
       {"jitter", s.jitter},
-      {"lattice_spacing_m", {s.lattice_spacing.x(), s.lattice_spacing.y()}},
+      {"lattice_spacing_m", Value::array({s.lattice_spacing.x(), s.lattice_spacing.y()})},
       {"lattice_error_m", s.lattice_error},
       {"global_transform", global}};
   if (!s.at_bounds.empty()) {
@@ -96,17 +96,17 @@ std::optional<double> GaussianProcessMapping::predictive_std(const Eigen::Vector
   return process_->standard_deviation(p);
 }
 
-nlohmann::json GaussianProcessMapping::parameters() const {
+Value GaussianProcessMapping::parameters() const {
   const GaussianProcessState& s = process_->state();
   const GpHyperparameters& h = s.hyperparameters;
   const GpLatticeOptions& lattice = process_->prediction_options().lattice;
-  nlohmann::json j = {
+  Value j = {
       {"approximation", "pairs reduced by spatial binning to at most " +
                             std::to_string(reduction_budget()) + ", then an exact GP on them"},
-      {"inputs", model_json::points(s.inputs)},
-      {"alpha", model_json::points(s.alpha)},
-      {"output_mean", {s.output_mean.x(), s.output_mean.y()}},
-      {"length_scale_m", {h.length_scale.x(), h.length_scale.y()}},
+      {"inputs", model_fields::points(s.inputs)},
+      {"alpha", model_fields::points(s.alpha)},
+      {"output_mean", Value::array({s.output_mean.x(), s.output_mean.y()})},
+      {"length_scale_m", Value::array({h.length_scale.x(), h.length_scale.y()})},
       {"signal_std_m", h.signal_std},
       {"noise_std_m", h.noise_std},
       {"jitter", s.jitter},
@@ -118,46 +118,54 @@ nlohmann::json GaussianProcessMapping::parameters() const {
         {"max_nodes", lattice.max_nodes},
         {"max_attempts", lattice.max_attempts}}}};
   if (global_)
-    j["T_grid_plan"] = model_json::matrix(T_grid_plan_);
+    j["T_grid_plan"] = model_fields::matrix(T_grid_plan_);
   return j;
 }
 
-void GaussianProcessMapping::load_parameters(const nlohmann::json& j, const std::string& where) {
-  using namespace model_json;
+void GaussianProcessMapping::load_parameters(const Value& j, const std::string& where) {
+  using namespace model_fields;
   const std::string p = "parameters.";
   GaussianProcessState s;
   s.inputs = points(member(j, "inputs", where, p), where, p + "inputs");
-  s.alpha = points(member(j, "alpha", where, p), where, p + "alpha");
-  const Eigen::VectorXd mean = vector(member(j, "output_mean", where, p), where, p + "output_mean");
-  const Eigen::VectorXd length =
-      vector(member(j, "length_scale_m", where, p), where, p + "length_scale_m");
-  if (mean.size() != 2 || length.size() != 2)
-    throw InputError("expected 2 numbers", where, 0, p + "output_mean");
-  s.output_mean = mean;
-  s.hyperparameters.length_scale = length;
+  // The weights of the GP's kernel sums: finite numbers of any size, one per input.
+  s.alpha = number_pairs(member(j, "alpha", where, p), where, p + "alpha");
+  if (s.alpha.cols() != s.inputs.cols() || s.inputs.cols() == 0)
+    throw InputError("inputs and alpha differ in number or are empty", where, 0, p + "alpha");
+  s.output_mean = vector(member(j, "output_mean", where, p), where, p + "output_mean", 2);
+  s.hyperparameters.length_scale =
+      vector(member(j, "length_scale_m", where, p), where, p + "length_scale_m", 2);
+  if (!(s.hyperparameters.length_scale.array() > 0.0).all())
+    throw InputError("must be > 0", where, 0, p + "length_scale_m");
   s.hyperparameters.signal_std =
-      number(member(j, "signal_std_m", where, p), where, p + "signal_std_m");
+      number(member(j, "signal_std_m", where, p), where, p + "signal_std_m", 0.0, kMaxCoordinate);
   s.hyperparameters.noise_std =
-      number(member(j, "noise_std_m", where, p), where, p + "noise_std_m");
-  s.jitter = number(member(j, "jitter", where, p), where, p + "jitter");
+      number(member(j, "noise_std_m", where, p), where, p + "noise_std_m", 0.0, kMaxCoordinate);
+  s.jitter = number(member(j, "jitter", where, p), where, p + "jitter", 0.0, kMaxCoordinate);
   GpPredictionOptions prediction = gp_options_.prediction;
-  const nlohmann::json& lattice = member(j, "lattice", where, p);
-  prediction.lattice.enabled = lattice.value("enabled", true);
-  prediction.lattice.tolerance = number(member(lattice, "tolerance_m", where, p + "lattice."),
-                                        where, p + "lattice.tolerance_m");
+  const Value& lattice = member(j, "lattice", where, p);
+  const std::string l = p + "lattice.";
+  if (const Value* enabled = optional_member(lattice, "enabled"))
+    prediction.lattice.enabled = flag(*enabled, where, l + "enabled");
+  prediction.lattice.tolerance =
+      number(member(lattice, "tolerance_m", where, l), where, l + "tolerance_m");
   prediction.lattice.initial_spacing =
-      number(member(lattice, "initial_spacing", where, p + "lattice."), where,
-             p + "lattice.initial_spacing");
-  prediction.lattice.margin =
-      number(member(lattice, "margin", where, p + "lattice."), where, p + "lattice.margin");
-  prediction.lattice.max_nodes = lattice.value("max_nodes", prediction.lattice.max_nodes);
-  prediction.lattice.max_attempts = lattice.value("max_attempts", prediction.lattice.max_attempts);
+      number(member(lattice, "initial_spacing", where, l), where, l + "initial_spacing");
+  prediction.lattice.margin = number(member(lattice, "margin", where, l), where, l + "margin");
+  // The lattice's size is bounded by this build's own limit, whatever the file says: a file
+  // must not make `map` allocate without bound.
+  const GpLatticeOptions defaults;
+  if (const Value* nodes = optional_member(lattice, "max_nodes"))
+    prediction.lattice.max_nodes = integer(*nodes, where, l + "max_nodes", 4, defaults.max_nodes);
+  if (const Value* attempts = optional_member(lattice, "max_attempts"))
+    prediction.lattice.max_attempts =
+        static_cast<int>(integer(*attempts, where, l + "max_attempts", 1, 16));
   if (global_)
     T_grid_plan_ = matrix(member(j, "T_grid_plan", where, p), where, p + "T_grid_plan", 3, 3);
   try {
+    validate_gp_lattice_options(prediction.lattice, p + "lattice");
     process_.emplace(std::move(s), prediction);
   } catch (const InputError& e) {
-    throw InputError(e.message(), where, 0, p + e.field());
+    throw InputError(e.message(), where, 0, e.field().starts_with(p) ? e.field() : p + e.field());
   }
 }
 

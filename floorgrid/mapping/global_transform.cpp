@@ -74,21 +74,29 @@ InverseMapping GlobalTransformMapping::inverse(const Eigen::Vector2d& g) const {
   return m;
 }
 
-nlohmann::json GlobalTransformMapping::parameters() const {
+Value GlobalTransformMapping::parameters() const {
   return {{"kind", transform_kind_name(ransac_.kind)},
-          {"T_grid_plan", model_json::matrix(T_grid_plan_)},
+          {"T_grid_plan", model_fields::matrix(T_grid_plan_)},
           {"ransac",
            {{"inlier_threshold_m", ransac_.inlier_threshold},
             {"confidence", ransac_.confidence},
             {"max_iterations", ransac_.max_iterations}}}};
 }
 
-void GlobalTransformMapping::load_parameters(const nlohmann::json& j, const std::string& where) {
+void GlobalTransformMapping::load_parameters(const Value& j, const std::string& where) {
   const Eigen::Matrix3d T =
-      model_json::matrix(model_json::member(j, "T_grid_plan", where, "parameters."), where,
-                         "parameters.T_grid_plan", 3, 3);
-  if (std::abs(T.topLeftCorner<2, 2>().determinant()) < 1e-300) {
-    throw InputError("the transform is singular", where, 0, "parameters.T_grid_plan");
+      model_fields::matrix(model_fields::member(j, "T_grid_plan", where, "parameters."), where,
+                           "parameters.T_grid_plan", 3, 3);
+  // A physical transform: a linear part of sane size and conditioning (scales within 1e-6 to
+  // 1e6, so that its inverse is finite too), a translation within kMaxCoordinate.
+  const Eigen::Matrix2d A = T.topLeftCorner<2, 2>();
+  const double det = std::abs(A.determinant());
+  const double norm = A.norm();
+  if (!(det > 1e-12 && norm < 1e6 && norm * norm / det < 1e12) ||
+      !(T.topRightCorner<2, 1>().cwiseAbs().maxCoeff() <= kMaxCoordinate) ||
+      T.row(2) != Eigen::RowVector3d(0.0, 0.0, 1.0)) {
+    throw InputError("not a usable transform (singular, of absurd scale, or not [A t; 0 0 1])",
+                     where, 0, "parameters.T_grid_plan");
   }
   set_transform(T);
 }

@@ -13,8 +13,9 @@ namespace floorgrid {
 LinearCombinationMapping::LinearCombinationMapping(MappingCommonOptions common,
                                                    LinearCombinationOptions options)
     : PointMapping(std::move(common)), options_(options) {
-  if (options_.neighbours < 3)
-    throw InputError("must be >= 3", {}, 0, "lc.neighbours");
+  if (options_.neighbours < 3 || options_.neighbours > kMaxNeighbours)
+    throw InputError("must be in [3, " + std::to_string(kMaxNeighbours) + "]", {}, 0,
+                     "lc.neighbours");
   if (!(options_.min_angle_deg > 0.0 && options_.min_angle_deg < 60.0)) {
     throw InputError("must be in (0, 60) degrees", {}, 0, "lc.min_angle_deg");
   }
@@ -173,23 +174,26 @@ InverseMapping LinearCombinationMapping::inverse(const Eigen::Vector2d& g) const
   return m;
 }
 
-nlohmann::json LinearCombinationMapping::parameters() const {
+Value LinearCombinationMapping::parameters() const {
   return {{"neighbours", options_.neighbours},
           {"min_angle_deg", options_.min_angle_deg},
-          {"plan", model_json::points(pairs_.points_in_plan)},
-          {"grid", model_json::points(pairs_.points_in_grid)}};
+          {"plan", model_fields::points(pairs_.points_in_plan)},
+          {"grid", model_fields::points(pairs_.points_in_grid)}};
 }
 
-void LinearCombinationMapping::load_parameters(const nlohmann::json& j, const std::string& where) {
-  using namespace model_json;
+void LinearCombinationMapping::load_parameters(const Value& j, const std::string& where) {
+  using namespace model_fields;
+  const std::string p = "parameters.";
+  // The neighbour search grows from this count: too few never finds a triangle, too many
+  // costs its cube per mapped point.
   options_.neighbours = static_cast<int>(
-      number(member(j, "neighbours", where, "parameters."), where, "parameters.neighbours"));
+      integer(member(j, "neighbours", where, p), where, p + "neighbours", 3, kMaxNeighbours));
   options_.min_angle_deg =
-      number(member(j, "min_angle_deg", where, "parameters."), where, "parameters.min_angle_deg");
+      number(member(j, "min_angle_deg", where, p), where, p + "min_angle_deg", 1e-3, 60.0);
   min_sin_angle_ = std::sin(options_.min_angle_deg * std::numbers::pi / 180.0);
   ReferencePairs pairs;
-  pairs.points_in_plan = points(member(j, "plan", where, "parameters."), where, "parameters.plan");
-  pairs.points_in_grid = points(member(j, "grid", where, "parameters."), where, "parameters.grid");
+  pairs.points_in_plan = points(member(j, "plan", where, p), where, p + "plan");
+  pairs.points_in_grid = points(member(j, "grid", where, p), where, p + "grid");
   if (pairs.points_in_plan.cols() != pairs.points_in_grid.cols() || pairs.size() < 3) {
     throw InputError("plan and grid points differ in number or are fewer than 3", where, 0,
                      "parameters");

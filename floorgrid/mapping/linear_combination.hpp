@@ -4,6 +4,9 @@
 
 namespace floorgrid {
 
+/// The most neighbours lc may search first (its cost per point grows with their cube).
+inline constexpr int kMaxNeighbours = 64;
+
 /// Options of the `lc` model.
 struct LinearCombinationOptions {
   int neighbours = 12;          ///< nearest plan points searched for a triangle (first round)
@@ -40,8 +43,8 @@ class LinearCombinationMapping : public PointMapping {
 
  protected:
   void fit_model(const ReferencePairs& pairs, FitSummary& summary) override;
-  nlohmann::json parameters() const override;
-  void load_parameters(const nlohmann::json& parameters, const std::string& where) override;
+  Value parameters() const override;
+  void load_parameters(const Value& parameters, const std::string& where) override;
 
  private:
   /// A chosen triangle: three pair indices (-1 when none qualifies).

@@ -245,11 +245,11 @@ Eigen::Matrix2d LocalTransformsMapping::jacobian(const Eigen::Vector2d& p) const
   return j / total;
 }
 
-nlohmann::json LocalTransformsMapping::parameters() const {
-  nlohmann::json clusters = nlohmann::json::array();
+Value LocalTransformsMapping::parameters() const {
+  Value clusters = Value::array();
   for (const Cluster& c : clusters_) {
-    clusters.push_back({{"T_grid_plan", model_json::matrix(c.T_grid_plan)},
-                        {"centroid", {c.centroid.x(), c.centroid.y()}},
+    clusters.push_back({{"T_grid_plan", model_fields::matrix(c.T_grid_plan)},
+                        {"centroid", Value::array({c.centroid.x(), c.centroid.y()})},
                         {"pairs", c.pairs},
                         {"rms_m", c.rms}});
   }
@@ -259,25 +259,28 @@ nlohmann::json LocalTransformsMapping::parameters() const {
           {"clusters", clusters}};
 }
 
-void LocalTransformsMapping::load_parameters(const nlohmann::json& j, const std::string& where) {
-  using namespace model_json;
+void LocalTransformsMapping::load_parameters(const Value& j, const std::string& where) {
+  using namespace model_fields;
+  const std::string p = "parameters.";
   options_.weight_power =
-      number(member(j, "weight_power", where, "parameters."), where, "parameters.weight_power");
-  const nlohmann::json& list = member(j, "clusters", where, "parameters.");
-  if (!list.is_array() || list.empty())
-    throw InputError("expected a non-empty list", where, 0, "parameters.clusters");
+      number(member(j, "weight_power", where, p), where, p + "weight_power", 0.1, 16.0);
+  const Value& list = member(j, "clusters", where, p);
+  if (!list.is_array() || list.size() == 0 || list.size() > kMaxPoints)
+    throw InputError("expected a non-empty list", where, 0, p + "clusters");
   clusters_.clear();
   for (std::size_t i = 0; i < list.size(); ++i) {
-    const std::string field = "parameters.clusters[" + std::to_string(i) + "]";
+    const std::string field = p + "clusters[" + std::to_string(i) + "].";
+    const Value& item = list.items()[i];
     Cluster c;
-    c.T_grid_plan = matrix(member(list[i], "T_grid_plan", where, field + "."), where,
-                           field + ".T_grid_plan", 3, 3);
-    const Eigen::MatrixXd centroid =
-        matrix(nlohmann::json::array({member(list[i], "centroid", where, field + ".")}), where,
-               field + ".centroid", 1, 2);
-    c.centroid = centroid.row(0).transpose();
-    c.pairs = list[i].value("pairs", std::size_t{0});
-    c.rms = list[i].value("rms_m", 0.0);
+    c.T_grid_plan =
+        matrix(member(item, "T_grid_plan", where, field), where, field + "T_grid_plan", 3, 3);
+    const Eigen::Matrix2Xd centroid =
+        points(Value::array({member(item, "centroid", where, field)}), where, field + "centroid");
+    c.centroid = centroid.col(0);
+    if (const Value* pairs = optional_member(item, "pairs"))
+      c.pairs = static_cast<std::size_t>(integer(*pairs, where, field + "pairs", 0, INT64_MAX));
+    if (const Value* rms = optional_member(item, "rms_m"))
+      c.rms = number(*rms, where, field + "rms_m");
     clusters_.push_back(c);
   }
 }

@@ -53,8 +53,8 @@ class LocalTransformsMapping : public PointMapping {
 
  protected:
   void fit_model(const ReferencePairs& pairs, FitSummary& summary) override;
-  nlohmann::json parameters() const override;
-  void load_parameters(const nlohmann::json& parameters, const std::string& where) override;
+  Value parameters() const override;
+  void load_parameters(const Value& parameters, const std::string& where) override;
 
  private:
   LocalTransformsOptions options_;

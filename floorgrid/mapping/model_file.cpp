@@ -1,126 +1,211 @@
 #include "floorgrid/mapping/model_file.hpp"
 
 #include <cmath>
+#include <limits>
+#include <sstream>
 
 #include "floorgrid/core/error.hpp"
+#include "floorgrid/core/validation.hpp"
 #include "floorgrid/mapping/mapping_factory.hpp"
 
 namespace floorgrid {
 
-using nlohmann::json;
+namespace model_fields {
 
-namespace model_json {
+namespace {
 
-json points(const Eigen::Matrix2Xd& p) {
-  json out = json::array();
-  for (Eigen::Index i = 0; i < p.cols(); ++i)
-    out.push_back({p(0, i), p(1, i)});
-  return out;
+[[noreturn]] void fail(const std::string& message, const std::string& where,
+                       const std::string& field) {
+  throw InputError(message, where, 0, field);
 }
 
-Eigen::Matrix2Xd points(const json& j, const std::string& where, const std::string& field) {
-  if (!j.is_array())
-    throw InputError("expected a list of [x, y]", where, 0, field);
-  Eigen::Matrix2Xd out(2, static_cast<Eigen::Index>(j.size()));
-  for (std::size_t i = 0; i < j.size(); ++i) {
-    const json& p = j[i];
-    if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number()) {
-      throw InputError("element " + std::to_string(i + 1) + " is not [x, y]", where, 0, field);
+const Value::Array& array_of(const Value& v, std::size_t max, const char* what,
+                             const std::string& where, const std::string& field) {
+  if (!v.is_array())
+    fail(std::string("expected a list of ") + what, where, field);
+  if (v.size() > max)
+    fail("holds " + std::to_string(v.size()) + " items, more than " + std::to_string(max), where,
+         field);
+  return v.items();
+}
+
+Eigen::Matrix2Xd read_pairs(const Value& v, const std::string& where, const std::string& field,
+                            double bound) {
+  const Value::Array& items = array_of(v, kMaxPoints, "[x, y]", where, field);
+  Eigen::Matrix2Xd out(2, static_cast<Eigen::Index>(items.size()));
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    const Value& p = items[i];
+    if (!p.is_array() || p.size() != 2 || !p.items()[0].is_number() || !p.items()[1].is_number())
+      fail("item " + std::to_string(i + 1) + " is not [x, y]", where, field);
+    const double x = p.items()[0].as_number(), y = p.items()[1].as_number();
+    if (!(std::abs(x) <= bound && std::abs(y) <= bound)) {
+      std::ostringstream message;
+      message << "item " << i + 1 << " [" << x << ", " << y << "] is not finite or beyond "
+              << bound;
+      fail(message.str(), where, field);
     }
-    out.col(static_cast<Eigen::Index>(i)) << p[0].get<double>(), p[1].get<double>();
+    out.col(static_cast<Eigen::Index>(i)) << x, y;
   }
-  if (!out.allFinite())
-    throw InputError("holds a value that is not finite", where, 0, field);
   return out;
 }
 
-json matrix(const Eigen::MatrixXd& m) {
-  json out = json::array();
+}  // namespace
+
+Value points(const Eigen::Matrix2Xd& p) {
+  Value out = Value::array();
+  for (Eigen::Index i = 0; i < p.cols(); ++i)
+    out.push_back(Value::array({p(0, i), p(1, i)}));
+  return out;
+}
+
+Eigen::Matrix2Xd points(const Value& v, const std::string& where, const std::string& field) {
+  return read_pairs(v, where, field, kMaxCoordinate);
+}
+
+Eigen::Matrix2Xd number_pairs(const Value& v, const std::string& where, const std::string& field) {
+  return read_pairs(v, where, field, std::numeric_limits<double>::max());
+}
+
+Value matrix(const Eigen::MatrixXd& m) {
+  Value out = Value::array();
   for (Eigen::Index r = 0; r < m.rows(); ++r) {
-    json row = json::array();
+    Value row = Value::array();
     for (Eigen::Index c = 0; c < m.cols(); ++c)
       row.push_back(m(r, c));
-    out.push_back(row);
+    out.push_back(std::move(row));
   }
   return out;
 }
 
-Eigen::MatrixXd matrix(const json& j, const std::string& where, const std::string& field,
+Eigen::MatrixXd matrix(const Value& v, const std::string& where, const std::string& field,
                        Eigen::Index rows, Eigen::Index cols) {
-  if (!j.is_array() || j.empty() || !j[0].is_array()) {
-    throw InputError("expected a matrix as a list of rows", where, 0, field);
-  }
-  const auto r = static_cast<Eigen::Index>(j.size()), c = static_cast<Eigen::Index>(j[0].size());
-  if ((rows && r != rows) || (cols && c != cols)) {
-    throw InputError(
-        "expected a " + std::to_string(rows) + " x " + std::to_string(cols) + " matrix", where, 0,
-        field);
-  }
-  Eigen::MatrixXd m(r, c);
-  for (Eigen::Index i = 0; i < r; ++i) {
-    const json& row = j[static_cast<std::size_t>(i)];
-    if (!row.is_array() || static_cast<Eigen::Index>(row.size()) != c) {
-      throw InputError("rows differ in length", where, 0, field);
-    }
-    for (Eigen::Index k = 0; k < c; ++k) {
-      if (!row[static_cast<std::size_t>(k)].is_number())
-        throw InputError("expected numbers", where, 0, field);
-      m(i, k) = row[static_cast<std::size_t>(k)].get<double>();
+  const std::string shape = std::to_string(rows) + " x " + std::to_string(cols);
+  if (!v.is_array() || static_cast<Eigen::Index>(v.size()) != rows)
+    fail("expected a " + shape + " matrix as a list of rows", where, field);
+  Eigen::MatrixXd m(rows, cols);
+  for (Eigen::Index r = 0; r < rows; ++r) {
+    const Value& row = v.items()[static_cast<std::size_t>(r)];
+    if (!row.is_array() || static_cast<Eigen::Index>(row.size()) != cols)
+      fail("expected a " + shape + " matrix as a list of rows", where, field);
+    for (Eigen::Index c = 0; c < cols; ++c) {
+      const Value& x = row.items()[static_cast<std::size_t>(c)];
+      if (!x.is_number() || !std::isfinite(x.as_number()))
+        fail("expected finite numbers", where, field);
+      m(r, c) = x.as_number();
     }
   }
-  if (!m.allFinite())
-    throw InputError("holds a value that is not finite", where, 0, field);
   return m;
 }
 
-json vector(const Eigen::VectorXd& v) {
-  json out = json::array();
+Value vector(const Eigen::VectorXd& v) {
+  Value out = Value::array();
   for (Eigen::Index i = 0; i < v.size(); ++i)
     out.push_back(v[i]);
   return out;
 }
 
-Eigen::VectorXd vector(const json& j, const std::string& where, const std::string& field) {
-  if (!j.is_array())
-    throw InputError("expected a list of numbers", where, 0, field);
-  Eigen::VectorXd v(static_cast<Eigen::Index>(j.size()));
-  for (std::size_t i = 0; i < j.size(); ++i) {
-    if (!j[i].is_number())
-      throw InputError("expected a list of numbers", where, 0, field);
-    v[static_cast<Eigen::Index>(i)] = j[i].get<double>();
+Eigen::VectorXd vector(const Value& v, const std::string& where, const std::string& field,
+                       Eigen::Index size) {
+  const Value::Array& items = array_of(v, kMaxPoints, "numbers", where, field);
+  if (size > 0 && static_cast<Eigen::Index>(items.size()) != size)
+    fail("expected " + std::to_string(size) + " numbers", where, field);
+  Eigen::VectorXd out(static_cast<Eigen::Index>(items.size()));
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    if (!items[i].is_number() || !std::isfinite(items[i].as_number()))
+      fail("expected finite numbers", where, field);
+    out[static_cast<Eigen::Index>(i)] = items[i].as_number();
   }
-  if (!v.allFinite())
-    throw InputError("holds a value that is not finite", where, 0, field);
-  return v;
+  return out;
 }
 
-double number(const json& j, const std::string& where, const std::string& field) {
-  if (!j.is_number() || !std::isfinite(j.get<double>())) {
-    throw InputError("expected a finite number", where, 0, field);
+double number(const Value& v, const std::string& where, const std::string& field, double lo,
+              double hi) {
+  if (!v.is_number() || !std::isfinite(v.as_number()))
+    fail("expected a finite number", where, field);
+  const double x = v.as_number();
+  if (x < lo || x > hi) {
+    std::ostringstream message;
+    message << "must be in [" << lo << ", " << hi << "] " << got(x);
+    fail(message.str(), where, field);
   }
-  return j.get<double>();
+  return x;
 }
 
-const json& member(const json& j, const std::string& key, const std::string& where,
-                   const std::string& field_prefix) {
-  if (!j.is_object() || !j.contains(key)) {
-    throw InputError("missing field", where, 0, field_prefix + key);
+std::int64_t integer(const Value& v, const std::string& where, const std::string& field,
+                     std::int64_t lo, std::int64_t hi) {
+  std::int64_t x = 0;
+  if (!v.as_integer(x) || x < lo || x > hi) {
+    fail("expected a whole number in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]",
+         where, field);
   }
-  return j.at(key);
+  return x;
 }
 
-}  // namespace model_json
+bool flag(const Value& v, const std::string& where, const std::string& field) {
+  if (!v.is_bool())
+    fail("expected true or false", where, field);
+  return v.as_bool();
+}
 
-json PointMapping::to_json() const {
+const std::string& text(const Value& v, const std::string& where, const std::string& field) {
+  if (!v.is_string())
+    fail("expected a text", where, field);
+  return v.as_string();
+}
+
+const Value& member(const Value& v, const std::string& key, const std::string& where,
+                    const std::string& prefix) {
+  if (!v.is_object())
+    fail("expected an object", where,
+         prefix.empty() ? "(file)" : prefix.substr(0, prefix.size() - 1));
+  const Value* m = v.find(key);
+  if (m == nullptr)
+    fail("missing field", where, prefix + key);
+  return *m;
+}
+
+const Value* optional_member(const Value& v, const std::string& key) {
+  const Value* m = v.find(key);
+  return m != nullptr && !m->is_null() ? m : nullptr;
+}
+
+}  // namespace model_fields
+
+namespace {
+
+using namespace model_fields;
+
+// Metres per unit of the pairs a model may record: a micrometre to a thousand kilometres.
+constexpr double kMinUnit = 1e-6;
+constexpr double kMaxUnit = 1e6;
+
+/// A finite number of the fit's summary, or 0 when it is missing or null (the summary is
+/// informational: a model file whose fit could not state it still maps).
+double summary_number(const Value& fit, const std::string& key, const std::string& where) {
+  const Value* v = optional_member(fit, key);
+  return v ? number(*v, where, "fit." + key) : 0.0;
+}
+
+std::size_t summary_count(const Value& object, const std::string& key, const std::string& where,
+                          const std::string& prefix) {
+  const Value* v = optional_member(object, key);
+  return v ? static_cast<std::size_t>(
+                 integer(*v, where, prefix + key, 0, std::numeric_limits<std::int64_t>::max()))
+           : 0;
+}
+
+}  // namespace
+
+Value PointMapping::to_model_file() const {
   const FitSummary& s = summary_;
-  json j;
-  j["format"] = kModelFormat;
-  j["version"] = kModelVersion;
-  j["model"] = name();
-  j["frames"] = {{"from", "plan"}, {"to", "grid"}};
-  j["units"] = "m";
-  j["unit"] = unit_;
-  j["pairs"] = {
+  Value file = Value::object();
+  file["format"] = kModelFormat;
+  file["version"] = kModelVersion;
+  file["model"] = name();
+  file["frames"] = {{"from", "plan"}, {"to", "grid"}};
+  file["units"] = "m";
+  file["unit"] = unit_;
+  file["pairs"] = {
       {"given", s.pairs_given},
       {"merged", s.pairs_merged},
       {"conflicting", s.pairs_conflicting},
@@ -132,36 +217,35 @@ json PointMapping::to_json() const {
         {"pairs_after", s.reduction.pairs_after},
         {"cell_size_m", s.reduction.cell_size},
         {"budget", reduction_budget()}}}};
-  json fit = {
-      {"rms_m", s.rms_m}, {"seconds", s.seconds}, {"warnings", s.warnings}, {"details", s.details}};
+  Value fit = {{"rms_m", s.rms_m},
+               {"seconds", s.seconds},
+               {"warnings", Value(s.warnings)},
+               {"details", s.details}};
   if (s.inliers)
     fit["inliers"] = *s.inliers;
-  fit["cv_error_m"] = s.cv_error_m ? json(*s.cv_error_m) : json(nullptr);
-  j["fit"] = fit;
-  j["options"] = {{"extrapolation_distance_m", common_.extrapolation_distance},
-                  {"support_budget", common_.support_budget},
-                  {"inverse_tolerance", common_.inverse_tolerance},
-                  {"inverse_max_iterations", common_.inverse_max_iterations},
-                  {"seed", common_.seed}};
-  j["support"] = {{"plan", model_json::points(support_.points_in_plan)},
-                  {"grid", model_json::points(support_.points_in_grid)},
-                  {"weights", model_json::vector(support_.has_weights()
-                                                     ? support_.weights
-                                                     : Eigen::VectorXd::Ones(support_.size()))}};
-  j["parameters"] = parameters();
-  return j;
+  fit["cv_error_m"] = s.cv_error_m ? Value(*s.cv_error_m) : Value(nullptr);
+  file["fit"] = std::move(fit);
+  file["options"] = {{"extrapolation_distance_m", common_.extrapolation_distance},
+                     {"support_budget", common_.support_budget},
+                     {"inverse_tolerance", common_.inverse_tolerance},
+                     {"inverse_max_iterations", common_.inverse_max_iterations},
+                     {"seed", common_.seed}};
+  file["support"] = {
+      {"plan", points(support_.points_in_plan)},
+      {"grid", points(support_.points_in_grid)},
+      {"weights",
+       vector(support_.has_weights() ? support_.weights : Eigen::VectorXd::Ones(support_.size()))}};
+  file["parameters"] = parameters();
+  return file;
 }
 
-void PointMapping::from_json(const json& j, const std::string& where) {
-  using namespace model_json;
-  const json& options = member(j, "options", where);
+void PointMapping::from_model_file(const Value& file, const std::string& where) {
+  const Value& options = member(file, "options", where);
   common_.extrapolation_distance =
       number(member(options, "extrapolation_distance_m", where, "options."), where,
-             "options.extrapolation_distance_m");
-  unit_ = number(member(j, "unit", where), where, "unit");
-  if (!(unit_ > 0.0))
-    throw InputError("must be > 0", where, 0, "unit");
-  const json& support = member(j, "support", where);
+             "options.extrapolation_distance_m", 0.0, kMaxCoordinate);
+  unit_ = number(member(file, "unit", where), where, "unit", kMinUnit, kMaxUnit);
+  const Value& support = member(file, "support", where);
   ReferencePairs pairs;
   pairs.points_in_plan = points(member(support, "plan", where, "support."), where, "support.plan");
   pairs.points_in_grid = points(member(support, "grid", where, "support."), where, "support.grid");
@@ -170,58 +254,62 @@ void PointMapping::from_json(const json& j, const std::string& where) {
       pairs.empty()) {
     throw InputError("plan, grid and weights differ in length or are empty", where, 0, "support");
   }
+  if ((pairs.weights.array() < 0.0).any() || pairs.weights.sum() <= 0.0)
+    throw InputError("weights must be >= 0 and not all 0", where, 0, "support.weights");
   common_.support_budget =
       std::max<std::size_t>(common_.support_budget, static_cast<std::size_t>(pairs.size()));
   build_support(pairs);
-  const json& fit = member(j, "fit", where);
+  const Value& fit = member(file, "fit", where);
   summary_ = FitSummary{};
   summary_.model = name();
-  summary_.rms_m = fit.value("rms_m", 0.0);
-  summary_.seconds = fit.value("seconds", 0.0);
-  if (fit.contains("inliers"))
-    summary_.inliers = fit["inliers"].get<std::size_t>();
-  if (fit.contains("cv_error_m") && fit["cv_error_m"].is_number())
-    summary_.cv_error_m = fit["cv_error_m"].get<double>();
-  summary_.details = fit.value("details", json::object());
-  const json& p = member(j, "pairs", where);
-  summary_.pairs_given = p.value("given", std::size_t{0});
-  summary_.pairs_used = p.value("used", std::size_t{0});
-  summary_.pairs_merged = p.value("merged", std::size_t{0});
-  load_parameters(member(j, "parameters", where), where);
+  summary_.rms_m = summary_number(fit, "rms_m", where);
+  summary_.seconds = summary_number(fit, "seconds", where);
+  if (optional_member(fit, "inliers"))
+    summary_.inliers = summary_count(fit, "inliers", where, "fit.");
+  if (optional_member(fit, "cv_error_m"))
+    summary_.cv_error_m = summary_number(fit, "cv_error_m", where);
+  if (const Value* details = optional_member(fit, "details"))
+    summary_.details = *details;
+  const Value& counts = member(file, "pairs", where);
+  summary_.pairs_given = summary_count(counts, "given", where, "pairs.");
+  summary_.pairs_used = summary_count(counts, "used", where, "pairs.");
+  summary_.pairs_merged = summary_count(counts, "merged", where, "pairs.");
+  load_parameters(member(file, "parameters", where), where);
   fitted_ = true;
 }
 
-std::unique_ptr<PointMapping> load_mapping(const json& j, const std::string& where) {
-  if (!j.is_object() || j.value("format", "") != kModelFormat) {
+std::unique_ptr<PointMapping> load_mapping(const Value& file, const std::string& where) {
+  const Value* format = file.find("format");
+  if (!file.is_object() || format == nullptr || !format->is_string() ||
+      format->as_string() != kModelFormat) {
     throw InputError(
         std::string("not a floorgrid model file (format must be '") + kModelFormat + "')", where, 0,
         "format");
   }
-  if (!j.contains("version") || !j["version"].is_number_integer() ||
-      j["version"].get<int>() != kModelVersion) {
-    throw InputError("model file version " +
-                         (j.contains("version") ? j["version"].dump() : std::string("(none)")) +
-                         " is not supported (this floorgrid reads version " +
+  const Value* version = file.find("version");
+  std::int64_t number = 0;
+  if (version == nullptr || !version->as_integer(number) || number != kModelVersion) {
+    throw InputError("model file version is not supported (this floorgrid reads version " +
                          std::to_string(kModelVersion) + ")",
                      where, 0, "version");
   }
-  const json& frames = model_json::member(j, "frames", where);
-  if (frames.value("from", "") != "plan" || frames.value("to", "") != "grid" ||
-      j.value("units", "") != "m") {
+  const Value& frames = member(file, "frames", where);
+  const Value* from = frames.find("from");
+  const Value* to = frames.find("to");
+  const Value* units = file.find("units");
+  if (!from || !to || !units || !from->is_string() || !to->is_string() || !units->is_string() ||
+      from->as_string() != "plan" || to->as_string() != "grid" || units->as_string() != "m") {
     throw InputError("expected frames plan -> grid in metres", where, 0, "frames");
   }
-  const json& model = model_json::member(j, "model", where);
-  if (!model.is_string())
-    throw InputError("expected a model name", where, 0, "model");
   MappingOptions options;
-  options.model = model.get<std::string>();
+  options.model = text(member(file, "model", where), where, "model");
   std::unique_ptr<PointMapping> mapping;
   try {
     mapping = make_mapping(options);
   } catch (const InputError& e) {
     throw InputError(e.message(), where, 0, "model");
   }
-  mapping->from_json(j, where);
+  mapping->from_model_file(file, where);
   return mapping;
 }
 

@@ -62,7 +62,8 @@ CrossValidationResult cross_validate(const MappingOptions& options, const Refere
   for (const double e : errors)
     sum += e;
   result.mean_error_m = sum / static_cast<double>(errors.size());
-  result.median_error_m = errors.empty() ? std::numeric_limits<double>::infinity() : upper_median(errors);
+  result.median_error_m =
+      errors.empty() ? std::numeric_limits<double>::infinity() : upper_median(errors);
   return result;
 }
 
@@ -108,7 +109,7 @@ void AutoMapping::fit_model(const ReferencePairs& pairs, FitSummary& summary) {
   table_.clear();
   std::string best;
   double best_error = std::numeric_limits<double>::infinity();
-  nlohmann::json table = nlohmann::json::object();
+  Value table = Value::object();
   for (const auto& name : options_->auto_select.candidates) {
     MappingOptions candidate = *options_;
     candidate.model = name;
@@ -118,10 +119,8 @@ void AutoMapping::fit_model(const ReferencePairs& pairs, FitSummary& summary) {
                               : cross_validate(candidate, pairs, options_->auto_select.cv);
     table_[name] = cv.mean_error_m;
     table[name] = {
-        {"mean_error_m", std::isfinite(cv.mean_error_m) ? nlohmann::json(cv.mean_error_m)
-                                                        : nlohmann::json(nullptr)},
-        {"median_error_m", std::isfinite(cv.median_error_m) ? nlohmann::json(cv.median_error_m)
-                                                            : nlohmann::json(nullptr)},
+        {"mean_error_m", std::isfinite(cv.mean_error_m) ? Value(cv.mean_error_m) : Value()},
+        {"median_error_m", std::isfinite(cv.median_error_m) ? Value(cv.median_error_m) : Value()},
         {"failed_folds", cv.failed_folds}};
     if (cv.mean_error_m < best_error) {
       best_error = cv.mean_error_m;
@@ -167,21 +166,27 @@ std::optional<double> AutoMapping::predictive_std(const Eigen::Vector2d& p) cons
   return chosen_->predictive_std(p);
 }
 
-nlohmann::json AutoMapping::parameters() const {
-  nlohmann::json table = nlohmann::json::object();
-  for (const auto& [name, error] : table_) {
-    table[name] = std::isfinite(error) ? nlohmann::json(error) : nlohmann::json(nullptr);
-  }
-  return {{"chosen", chosen_->name()}, {"cv_mean_error_m", table}, {"model", chosen_->to_json()}};
+Value AutoMapping::parameters() const {
+  Value table = Value::object();
+  for (const auto& [name, error] : table_)
+    table[name] = std::isfinite(error) ? Value(error) : Value(nullptr);
+  return {
+      {"chosen", chosen_->name()}, {"cv_mean_error_m", table}, {"model", chosen_->to_model_file()}};
 }
 
-void AutoMapping::load_parameters(const nlohmann::json& j, const std::string& where) {
-  chosen_ = load_mapping(model_json::member(j, "model", where, "parameters."), where);
+void AutoMapping::load_parameters(const Value& j, const std::string& where) {
+  using namespace model_fields;
+  const Value& model = member(j, "model", where, "parameters.");
+  const Value* name = model.find("model");
+  if (name != nullptr && name->is_string() && name->as_string() == "auto")
+    throw InputError("auto cannot choose auto", where, 0, "parameters.model.model");
+  chosen_ = load_mapping(model, where);
   table_.clear();
-  if (j.contains("cv_mean_error_m") && j["cv_mean_error_m"].is_object()) {
-    for (const auto& [name, error] : j["cv_mean_error_m"].items()) {
-      table_[name] =
-          error.is_number() ? error.get<double>() : std::numeric_limits<double>::infinity();
+  if (const Value* table = optional_member(j, "cv_mean_error_m"); table && table->is_object()) {
+    for (const auto& [candidate, error] : table->members()) {
+      table_[candidate] = error.is_number() && std::isfinite(error.as_number())
+                              ? error.as_number()
+                              : std::numeric_limits<double>::infinity();
     }
   }
 }

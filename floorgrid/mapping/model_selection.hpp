@@ -77,8 +77,8 @@ class AutoMapping : public PointMapping {
 
  protected:
   void fit_model(const ReferencePairs& pairs, FitSummary& summary) override;
-  nlohmann::json parameters() const override;
-  void load_parameters(const nlohmann::json& parameters, const std::string& where) override;
+  Value parameters() const override;
+  void load_parameters(const Value& parameters, const std::string& where) override;
 
  private:
   std::unique_ptr<MappingOptions> options_;

@@ -174,15 +174,15 @@ InverseMapping PiecewiseAffineMapping::inverse(const Eigen::Vector2d& g) const {
   return PointMapping::inverse(g);
 }
 
-nlohmann::json PiecewiseAffineMapping::parameters() const {
-  return {{"plan", model_json::points(pairs_.points_in_plan)},
-          {"grid", model_json::points(pairs_.points_in_grid)},
+Value PiecewiseAffineMapping::parameters() const {
+  return {{"plan", model_fields::points(pairs_.points_in_plan)},
+          {"grid", model_fields::points(pairs_.points_in_grid)},
           {"seed", common().seed},
           {"triangulation", "Delaunay of the plan points, rebuilt on load (deterministic)"}};
 }
 
-void PiecewiseAffineMapping::load_parameters(const nlohmann::json& j, const std::string& where) {
-  using namespace model_json;
+void PiecewiseAffineMapping::load_parameters(const Value& j, const std::string& where) {
+  using namespace model_fields;
   ReferencePairs pairs;
   pairs.points_in_plan = points(member(j, "plan", where, "parameters."), where, "parameters.plan");
   pairs.points_in_grid = points(member(j, "grid", where, "parameters."), where, "parameters.grid");

@@ -38,8 +38,8 @@ class PiecewiseAffineMapping : public PointMapping {
 
  protected:
   void fit_model(const ReferencePairs& pairs, FitSummary& summary) override;
-  nlohmann::json parameters() const override;
-  void load_parameters(const nlohmann::json& parameters, const std::string& where) override;
+  Value parameters() const override;
+  void load_parameters(const Value& parameters, const std::string& where) override;
 
  private:
   void build(const ReferencePairs& pairs);

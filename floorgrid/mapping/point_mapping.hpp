@@ -3,11 +3,11 @@
 #include <Eigen/Core>
 #include <Eigen/LU>
 #include <memory>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "floorgrid/core/value.hpp"
 #include "floorgrid/geometry/convex_hull.hpp"
 #include "floorgrid/geometry/point_index.hpp"
 #include "floorgrid/geometry/pose2.hpp"
@@ -67,7 +67,7 @@ struct FitSummary {
   double seconds = 0.0;               ///< wall-clock time of the fit
   std::optional<double> cv_error_m;   ///< k-fold cross-validated mean error, metres
   std::vector<std::string> warnings;  ///< duplicates merged, weak conditioning, ...
-  nlohmann::json details = nlohmann::json::object();  ///< model-specific figures
+  Value details = Value::object();    ///< model-specific figures
 };
 
 /// A mapping from the plan frame to the grid frame learnt from reference pairs (SPEC "Mapping
@@ -151,20 +151,22 @@ class PointMapping {
   /// Records the pairs' unit.
   void set_unit(double metres_per_unit) { unit_ = metres_per_unit; }
 
-  /// The model file's JSON (format "floorgrid-model", SPEC contract): envelope, support set and
-  /// the model's parameters.
-  nlohmann::json to_json() const;
-  /// Restores a model saved by to_json() (the envelope was checked by load_mapping()).
-  void from_json(const nlohmann::json& model_file, const std::string& where);
+  /// The model file's content (format "floorgrid-model", SPEC contract; io/ writes it as JSON):
+  /// envelope, support set and the model's parameters.
+  Value to_model_file() const;
+  /// Restores a model saved by to_model_file() (the envelope was checked by load_mapping());
+  /// InputError naming `where` and the field for any field out of type or range.
+  void from_model_file(const Value& model_file, const std::string& where);
 
  protected:
   /// Fits to prepared pairs (validated, merged, reduced when reduces_pairs()). Fills the
   /// summary's rms_m, inliers and details; throws InputError on degenerate pairs.
   virtual void fit_model(const ReferencePairs& pairs, FitSummary& summary) = 0;
   /// The model's own parameters for the model file.
-  virtual nlohmann::json parameters() const = 0;
-  /// Restores the model's own parameters; InputError naming `where` and the field otherwise.
-  virtual void load_parameters(const nlohmann::json& parameters, const std::string& where) = 0;
+  virtual Value parameters() const = 0;
+  /// Restores the model's own parameters, checking each; InputError naming `where` and the
+  /// field otherwise.
+  virtual void load_parameters(const Value& parameters, const std::string& where) = 0;
 
  private:
   void build_support(const ReferencePairs& pairs);

@@ -57,7 +57,7 @@ double cross_validated_error(const ReferencePairs& pairs, double lambda) {
 }  // namespace
 
 double ThinPlateSplineMapping::choose_regularization(const ReferencePairs& pairs,
-                                                     nlohmann::json& table) const {
+                                                     Value& table) const {
   // A seeded random subsample, dealt into folds by position.
   std::vector<Eigen::Index> order(static_cast<std::size_t>(pairs.size()));
   for (Eigen::Index i = 0; i < pairs.size(); ++i)
@@ -72,8 +72,7 @@ double ThinPlateSplineMapping::choose_regularization(const ReferencePairs& pairs
   double best = 0.0, best_error = std::numeric_limits<double>::infinity();
   for (const double lambda : {0.0, 1e-3, 1e-2, 0.1, 1.0, 3.0, 10.0, 30.0, 100.0, 300.0, 1000.0}) {
     const double error = cross_validated_error(sample, lambda);
-    table[fmt_lambda(lambda)] =
-        std::isfinite(error) ? nlohmann::json(error) : nlohmann::json(nullptr);
+    table[fmt_lambda(lambda)] = std::isfinite(error) ? Value(error) : Value(nullptr);
     if (error < best_error) {
       best_error = error;
       best = lambda;
@@ -85,7 +84,7 @@ double ThinPlateSplineMapping::choose_regularization(const ReferencePairs& pairs
 ThinPlateSplineMapping::~ThinPlateSplineMapping() = default;
 
 void ThinPlateSplineMapping::fit_model(const ReferencePairs& pairs, FitSummary& summary) {
-  nlohmann::json table = nlohmann::json::object();
+  Value table = Value::object();
   const double lambda =
       options_.regularization ? *options_.regularization : choose_regularization(pairs, table);
   spline_.emplace(ThinPlateSpline::fit(pairs.points_in_plan, pairs.points_in_grid, {lambda}));
@@ -122,36 +121,40 @@ Eigen::Matrix2d ThinPlateSplineMapping::jacobian(const Eigen::Vector2d& p) const
   return spline_->jacobian(p);
 }
 
-nlohmann::json ThinPlateSplineMapping::parameters() const {
+Value ThinPlateSplineMapping::parameters() const {
   const ThinPlateSplineData& d = spline_->data();
-  return {{"centres", model_json::points(d.centres_in_plan)},
-          {"kernel_weights", model_json::points(d.kernel_weights)},
-          {"affine", model_json::matrix(d.affine)},
+  return {{"centres", model_fields::points(d.centres_in_plan)},
+          {"kernel_weights", model_fields::points(d.kernel_weights)},
+          {"affine", model_fields::matrix(d.affine)},
           {"regularization_m2", d.regularization},
-          {"input_offset", {d.input_offset.x(), d.input_offset.y()}},
+          {"input_offset", Value::array({d.input_offset.x(), d.input_offset.y()})},
           {"input_scale", d.input_scale},
-          {"output_offset", {d.output_offset.x(), d.output_offset.y()}},
+          {"output_offset", Value::array({d.output_offset.x(), d.output_offset.y()})},
           {"lattice_spacing_m", options_.lattice.spacing}};
 }
 
-void ThinPlateSplineMapping::load_parameters(const nlohmann::json& j, const std::string& where) {
-  using namespace model_json;
+void ThinPlateSplineMapping::load_parameters(const Value& j, const std::string& where) {
+  using namespace model_fields;
   const std::string p = "parameters.";
   ThinPlateSplineData d;
   d.centres_in_plan = points(member(j, "centres", where, p), where, p + "centres");
-  d.kernel_weights = points(member(j, "kernel_weights", where, p), where, p + "kernel_weights");
+  d.kernel_weights =
+      number_pairs(member(j, "kernel_weights", where, p), where, p + "kernel_weights");
+  if (d.kernel_weights.cols() != d.centres_in_plan.cols() || d.centres_in_plan.cols() == 0)
+    throw InputError("centres and kernel weights differ in number or are empty", where, 0,
+                     p + "kernel_weights");
   d.affine = matrix(member(j, "affine", where, p), where, p + "affine", 2, 3);
   d.regularization =
-      number(member(j, "regularization_m2", where, p), where, p + "regularization_m2");
-  const Eigen::VectorXd in = vector(member(j, "input_offset", where, p), where, p + "input_offset");
-  const Eigen::VectorXd out =
-      vector(member(j, "output_offset", where, p), where, p + "output_offset");
-  if (in.size() != 2 || out.size() != 2)
-    throw InputError("expected [x, y]", where, 0, p + "input_offset");
-  d.input_offset = in;
-  d.output_offset = out;
-  d.input_scale = number(member(j, "input_scale", where, p), where, p + "input_scale");
-  options_.lattice.spacing = j.value("lattice_spacing_m", options_.lattice.spacing);
+      number(member(j, "regularization_m2", where, p), where, p + "regularization_m2", 0.0, 1e300);
+  d.input_offset = vector(member(j, "input_offset", where, p), where, p + "input_offset", 2);
+  d.output_offset = vector(member(j, "output_offset", where, p), where, p + "output_offset", 2);
+  d.input_scale =
+      number(member(j, "input_scale", where, p), where, p + "input_scale", 1e-12, kMaxCoordinate);
+  if (const Value* spacing = optional_member(j, "lattice_spacing_m")) {
+    // The lattice covers the centres' box: a spacing below a millimetre would make it huge.
+    options_.lattice.spacing =
+        number(*spacing, where, p + "lattice_spacing_m", 1e-3, kMaxCoordinate);
+  }
   try {
     spline_.emplace(std::move(d));
   } catch (const InputError& e) {

@@ -45,12 +45,12 @@ class ThinPlateSplineMapping : public PointMapping {
 
  protected:
   void fit_model(const ReferencePairs& pairs, FitSummary& summary) override;
-  nlohmann::json parameters() const override;
-  void load_parameters(const nlohmann::json& parameters, const std::string& where) override;
+  Value parameters() const override;
+  void load_parameters(const Value& parameters, const std::string& where) override;
 
  private:
   /// lambda by cross-validation on a subsample; `table` gets the error of every candidate.
-  double choose_regularization(const ReferencePairs& pairs, nlohmann::json& table) const;
+  double choose_regularization(const ReferencePairs& pairs, Value& table) const;
 
   ThinPlateSplineModelOptions options_;
   std::optional<ThinPlateSpline> spline_;

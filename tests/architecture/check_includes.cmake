@@ -22,6 +22,8 @@ set(allowed_io core geometry maps robot localization mapping evaluation simulati
 set(allowed_server core geometry maps robot localization mapping evaluation simulation pipeline
                    io)
 set(known core geometry maps robot localization mapping evaluation simulation pipeline io server)
+# File formats are io/'s: no other module includes a format library's headers.
+set(format_modules io server)
 
 file(GLOB_RECURSE files RELATIVE "${ROOT}/floorgrid" "${ROOT}/floorgrid/*.hpp"
      "${ROOT}/floorgrid/*.cpp")
@@ -34,6 +36,15 @@ foreach(file ${files})
             "(tests/architecture/check_includes.cmake)")
     math(EXPR violations "${violations} + 1")
     continue()
+  endif()
+  if(NOT module IN_LIST format_modules)
+    file(STRINGS "${ROOT}/floorgrid/${file}" format_includes
+         REGEX "^[ \t]*#[ \t]*include[ \t]*<(nlohmann/|yaml-cpp/|png\\.h|zlib\\.h)")
+    foreach(line ${format_includes})
+      string(STRIP "${line}" line)
+      message("floorgrid/${file}: ${module}/ must not include a file format's library (${line})")
+      math(EXPR violations "${violations} + 1")
+    endforeach()
   endif()
   file(STRINGS "${ROOT}/floorgrid/${file}" includes
        REGEX "^[ \t]*#[ \t]*include[ \t]*[\"<](floorgrid|apps)/")

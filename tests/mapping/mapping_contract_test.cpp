@@ -7,6 +7,7 @@
 
 #include "floorgrid/core/error.hpp"
 #include "floorgrid/geometry/convex_hull.hpp"
+#include "floorgrid/io/value_json.hpp"
 #include "floorgrid/mapping/mapping_factory.hpp"
 #include "floorgrid/mapping/model_file.hpp"
 #include "tests/mapping/mapping_test_data.hpp"
@@ -158,7 +159,8 @@ TEST_P(MappingContract, PoseHeadingTurnsWithTheMapping) {
 TEST_P(MappingContract, SaveThenLoadGivesIdenticalPredictions) {
   const ReferencePairs pairs = make_pairs(random_points(1000, 15), test::bent(), 0.01, 16);
   const auto m = fitted(GetParam().name, pairs);
-  const auto loaded = load_mapping(nlohmann::json::parse(m->to_json().dump()), "model.json");
+  const auto loaded =
+      load_mapping(io::parse_json(io::dump_json(m->to_model_file()), "model.json"), "model.json");
   EXPECT_EQ(loaded->name(), GetParam().name);
   const Eigen::Matrix2Xd probes = points_in_hull(pairs, 200, 17);
   for (Eigen::Index i = 0; i < probes.cols(); ++i) {

@@ -3,3 +3,4 @@
 
 #include "floorgrid/io/map_io.hpp"
 #include "floorgrid/mapping/point_mapping.hpp"
+#include <nlohmann/json.hpp>

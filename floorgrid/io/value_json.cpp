@@ -1,0 +1,125 @@
+#include "floorgrid/io/value_json.hpp"
+
+#include <algorithm>
+#include <variant>
+
+#include "floorgrid/core/error.hpp"
+
+namespace floorgrid::io {
+
+namespace {
+
+template <class... Ts>
+struct Overloaded : Ts... {
+  using Ts::operator()...;
+};
+template <class... Ts>
+Overloaded(Ts...) -> Overloaded<Ts...>;
+
+long line_at(const std::string& text, std::size_t offset) {
+  offset = std::min(offset, text.size());
+  return 1 + static_cast<long>(std::count(
+                 text.begin(), text.begin() + static_cast<std::ptrdiff_t>(offset), '\n'));
+}
+
+/// The deepest nesting of arrays and objects in `text` (outside strings), and where it first
+/// passes `limit` (npos when it does not).
+std::size_t first_too_deep(const std::string& text, int limit) {
+  int depth = 0;
+  bool in_string = false, escaped = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (in_string) {
+      if (escaped)
+        escaped = false;
+      else if (c == '\\')
+        escaped = true;
+      else if (c == '"')
+        in_string = false;
+      continue;
+    }
+    if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > limit)
+        return i;
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+  return std::string::npos;
+}
+
+}  // namespace
+
+nlohmann::json to_json(const Value& value) {
+  return std::visit(Overloaded{[](std::monostate) { return nlohmann::json(nullptr); },
+                               [](bool b) { return nlohmann::json(b); },
+                               [](std::int64_t i) { return nlohmann::json(i); },
+                               [](std::uint64_t u) { return nlohmann::json(u); },
+                               [](double d) { return nlohmann::json(d); },
+                               [](const std::string& s) { return nlohmann::json(s); },
+                               [](const Value::Array& items) {
+                                 nlohmann::json out = nlohmann::json::array();
+                                 for (const Value& item : items)
+                                   out.push_back(to_json(item));
+                                 return out;
+                               },
+                               [](const Value::Object& members) {
+                                 nlohmann::json out = nlohmann::json::object();
+                                 for (const auto& [key, item] : members)
+                                   out[key] = to_json(item);
+                                 return out;
+                               }},
+                    value.data());
+}
+
+Value from_json(const nlohmann::json& json) {
+  switch (json.type()) {
+    case nlohmann::json::value_t::boolean:
+      return Value(json.get<bool>());
+    case nlohmann::json::value_t::number_integer:
+      return Value(json.get<std::int64_t>());
+    case nlohmann::json::value_t::number_unsigned:
+      return Value(json.get<std::uint64_t>());
+    case nlohmann::json::value_t::number_float:
+      return Value(json.get<double>());
+    case nlohmann::json::value_t::string:
+      return Value(json.get<std::string>());
+    case nlohmann::json::value_t::array: {
+      Value out = Value::array();
+      for (const nlohmann::json& item : json)
+        out.push_back(from_json(item));
+      return out;
+    }
+    case nlohmann::json::value_t::object: {
+      Value out = Value::object();
+      for (const auto& [key, item] : json.items())
+        out[key] = from_json(item);
+      return out;
+    }
+    default:
+      return Value();
+  }
+}
+
+Value parse_json(const std::string& text, const std::string& where) {
+  if (const std::size_t at = first_too_deep(text, kMaxJsonDepth); at != std::string::npos) {
+    throw InputError("nested deeper than " + std::to_string(kMaxJsonDepth) + " levels", where,
+                     line_at(text, at));
+  }
+  try {
+    return from_json(nlohmann::json::parse(text));
+  } catch (const nlohmann::json::parse_error& e) {
+    throw InputError("not valid JSON (" + std::string(e.what()) + ")", where,
+                     line_at(text, e.byte));
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError("not valid JSON (" + std::string(e.what()) + ")", where, 0);
+  }
+}
+
+std::string dump_json(const Value& value, int indent) {
+  return to_json(value).dump(indent);
+}
+
+}  // namespace floorgrid::io
