@@ -50,6 +50,17 @@ std::size_t first_too_deep(const std::string& text, int limit) {
   return std::string::npos;
 }
 
+/// The JSON library's message without its "[json.exception.parse_error.101] " tag.
+std::string reason(const nlohmann::json::exception& e) {
+  std::string text = e.what();
+  if (text.starts_with("[json.exception.")) {
+    const std::size_t end = text.find("] ");
+    if (end != std::string::npos)
+      text.erase(0, end + 2);
+  }
+  return text;
+}
+
 }  // namespace
 
 nlohmann::json to_json(const Value& value) {
