@@ -122,10 +122,9 @@ Value parse_json(const std::string& text, const std::string& where) {
   try {
     return from_json(nlohmann::json::parse(text));
   } catch (const nlohmann::json::parse_error& e) {
-    throw InputError("not valid JSON (" + std::string(e.what()) + ")", where,
-                     line_at(text, e.byte));
+    throw InputError("not valid JSON: " + reason(e), where, line_at(text, e.byte));
   } catch (const nlohmann::json::exception& e) {
-    throw InputError("not valid JSON (" + std::string(e.what()) + ")", where, 0);
+    throw InputError("not valid JSON: " + reason(e), where, 0);
   }
 }
 
