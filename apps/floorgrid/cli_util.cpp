@@ -5,6 +5,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <filesystem>
 
 #include "floorgrid/core/error.hpp"
 
@@ -41,6 +42,17 @@ std::vector<double> parse_numbers(const std::string& text, const std::string& op
 Pose2 parse_pose(const std::string& text, const std::string& option) {
   const auto v = parse_numbers(text, option, {2, 3});
   return {v[0], v[1], v.size() == 3 ? v[2] : 0.0};
+}
+
+void refuse_overwriting_input(const std::string& input, const std::string& output,
+                              const std::string& option) {
+  std::error_code error;
+  const auto a = std::filesystem::weakly_canonical(input, error);
+  const auto b = std::filesystem::weakly_canonical(output, error);
+  if (!error && a == b) {
+    throw InputError(fmt::format("'{}' is also the input: it would be overwritten", output), {}, 0,
+                     option);
+  }
 }
 
 }  // namespace floorgrid::app

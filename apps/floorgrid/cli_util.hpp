@@ -15,4 +15,9 @@ std::vector<double> parse_numbers(const std::string& text, const std::string& op
 /// Parses "x,y,yaw" (or "x,y" with yaw 0) into a pose; throws InputError naming `option`.
 Pose2 parse_pose(const std::string& text, const std::string& option);
 
+/// Refuses an output that would overwrite an input (the same file, however it is named):
+/// InputError naming `option`.
+void refuse_overwriting_input(const std::string& input, const std::string& output,
+                              const std::string& option);
+
 }  // namespace floorgrid::app

@@ -3,6 +3,9 @@
 #include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
+#include <unistd.h>
+
+#include "apps/floorgrid/cli_util.hpp"
 #include "apps/floorgrid/commands.hpp"
 #include "floorgrid/core/error.hpp"
 #include "floorgrid/io/atomic_file.hpp"
@@ -13,6 +16,44 @@
 
 namespace floorgrid::app {
 
+namespace {
+
+/// Half of this machine's physical memory, in GiB (8 when it cannot be read).
+double default_memory_limit_gb() {
+  const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
+  if (pages <= 0 || page <= 0)
+    return 8.0;
+  return 0.5 * static_cast<double>(pages) * static_cast<double>(page) / (1u << 30);
+}
+
+/// Refuses a fit whose dense matrices would not fit the memory limit, before it starts.
+void check_fit_memory(const MappingOptions& options, std::size_t pairs, double limit_gb) {
+  const double needed_gb = static_cast<double>(fit_memory_bytes(options, pairs)) / (1u << 30);
+  if (needed_gb > limit_gb) {
+    throw InputError(
+        fmt::format("model {} with {} of the pairs would need about {:.1f} GiB, "
+                    "more than the limit of {:.1f} GiB: lower --budget or raise "
+                    "--memory-limit",
+                    options.model, std::min<std::size_t>(pairs, options.common.reduction.budget),
+                    needed_gb, limit_gb),
+        {}, 0, "--budget");
+  }
+}
+
+/// Runs `work`; an InputError about the pairs that names no file gets the pairs file's name.
+template <typename Work>
+auto with_file(const std::string& file, const Work& work) {
+  try {
+    return work();
+  } catch (const InputError& e) {
+    if (!e.file().empty())
+      throw;
+    throw InputError(e.message(), file, e.line(), e.field());
+  }
+}
+
+}  // namespace
+
 void add_fit_command(CLI::App& root) {
   auto* cmd = root.add_subcommand("fit", "Fit a mapping model to reference pairs");
   struct Args {
@@ -20,14 +61,18 @@ void add_fit_command(CLI::App& root) {
     int cv = 0;
     double unit = 1.0;
     MappingOptions options;
+    // Signed, so that a negative budget is refused rather than wrapped around.
+    long long budget = static_cast<long long>(MappingOptions{}.common.reduction.budget);
+    double memory_limit_gb = default_memory_limit_gb();
   };
   auto args = std::make_shared<Args>();
   std::string models;
-  for (const auto& n : mapping_model_names())
-    models += (models.empty() ? "" : ", ") + n;
+  for (const ModelEntry& entry : model_registry())
+    models += fmt::format("\n  {:<10} {}", entry.name, entry.traits.description);
   cmd->add_option("--pairs", args->pairs, "pairs CSV: plan_x,plan_y,grid_x,grid_y[,weight]")
       ->required();
-  cmd->add_option("--model", args->options.model, "model: " + models)->capture_default_str();
+  cmd->add_option("--model", args->options.model, "the model, one of:" + models)
+      ->capture_default_str();
   cmd->add_option("--out", args->out, "model file to write (JSON)")->required();
   cmd->add_option("--cv", args->cv, "also report the k-fold cross-validated error (0: no)")
       ->check(CLI::NonNegativeNumber);
@@ -36,8 +81,10 @@ void add_fit_command(CLI::App& root) {
                   "records it and `map` then reads and writes in those units")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  cmd->add_option("--budget", args->options.common.reduction.budget,
-                  "pairs kept by spatial binning in gp, gpgt, tps and dt")
+  cmd->add_option("--budget", args->budget, "pairs kept by spatial binning in gp, gpgt, tps and dt")
+      ->capture_default_str();
+  cmd->add_option("--memory-limit", args->memory_limit_gb,
+                  "GiB a fit may use at most (default: half of this machine's memory)")
       ->capture_default_str();
   cmd->add_option("--seed", args->options.common.seed, "seed of RANSAC and subsampling")
       ->capture_default_str();
@@ -50,19 +97,28 @@ void add_fit_command(CLI::App& root) {
   cmd->callback([args] {
     if (args->cv == 1)
       throw InputError("must be 0 or at least 2", {}, 0, "--cv");
+    if (args->budget < 3 || args->budget > 10'000'000)
+      throw InputError(fmt::format("must be in [3, 10000000] (got {})", args->budget), {}, 0,
+                       "--budget");
+    if (!(args->memory_limit_gb > 0.0 && args->memory_limit_gb < 1e6))
+      throw InputError("must be a positive number of GiB", {}, 0, "--memory-limit");
+    args->options.common.reduction.budget = static_cast<std::size_t>(args->budget);
+    refuse_overwriting_input(args->pairs, args->out, "--out");
     ReferencePairs pairs = io::read_pairs_csv(args->pairs, args->unit);
+    check_fit_memory(args->options, static_cast<std::size_t>(pairs.size()), args->memory_limit_gb);
     io::prepare_output_folder(std::filesystem::path(args->out).parent_path().empty()
                                   ? std::filesystem::path(".")
                                   : std::filesystem::path(args->out).parent_path());
     auto model = make_mapping(args->options);
     model->set_unit(args->unit);
-    const FitSummary s = model->fit(pairs);
+    const FitSummary s = with_file(args->pairs, [&] { return model->fit(pairs); });
     for (const auto& w : s.warnings)
       spdlog::warn("{}", w);
     if (args->cv >= 2) {
       CrossValidationOptions cv;
       cv.folds = args->cv;
-      const CrossValidationResult r = cross_validate(args->options, pairs, cv);
+      const CrossValidationResult r =
+          with_file(args->pairs, [&] { return cross_validate(args->options, pairs, cv); });
       model->set_cv_error(r.mean_error_m);
     }
     io::write_model(*model, args->out);

@@ -62,8 +62,12 @@ void add_map_command(CLI::App& root) {
       throw InputError("--points needs --out OUT.csv", {}, 0, "--out");
     }
     const auto model = io::read_model(args->model);
+    // Coordinates beyond kMaxCoordinate metres are not physical (their squared distances
+    // overflow): refused, in the model's units.
+    const double max_abs = kMaxCoordinate / model->unit();
     if (!args->points.empty()) {
-      const io::PointsTable table = io::read_points_csv(args->points);
+      refuse_overwriting_input(args->points, args->out, "--out");
+      const io::PointsTable table = io::read_points_csv(args->points, max_abs);
       std::vector<io::MappedRow> rows;
       rows.reserve(static_cast<std::size_t>(table.points.cols()));
       for (Eigen::Index i = 0; i < table.points.cols(); ++i) {
@@ -78,6 +82,11 @@ void add_map_command(CLI::App& root) {
     }
     for (const std::string& text : args->values) {
       const auto v = parse_numbers(text, "POINTS", {2, 3});
+      if (std::abs(v[0]) > max_abs || std::abs(v[1]) > max_abs) {
+        throw InputError(
+            fmt::format("'{}' lies beyond {:g}: not a physical coordinate", text, max_abs), {}, 0,
+            "POINTS");
+      }
       const double* heading = v.size() == 3 ? &v[2] : nullptr;
       const io::MappedRow row = map_one(*model, {v[0], v[1]}, heading, args->inverse);
       if (row.mapped.flag == MapFlag::not_invertible) {

@@ -10,6 +10,7 @@
 
 #include "floorgrid/core/error.hpp"
 #include "floorgrid/io/atomic_file.hpp"
+#include "floorgrid/io/csv_lines.hpp"
 
 namespace floorgrid::io {
 
@@ -18,61 +19,29 @@ namespace {
 constexpr std::array<std::string_view, 5> kColumns = {"plan_x", "plan_y", "grid_x", "grid_y",
                                                       "weight"};
 
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t'))
-    s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
-    s.remove_suffix(1);
-  return s;
-}
-
-std::vector<std::string_view> split(std::string_view line) {
-  std::vector<std::string_view> fields;
-  std::size_t start = 0;
-  while (true) {
-    const std::size_t comma = line.find(',', start);
-    fields.push_back(trim(line.substr(start, comma - start)));
-    if (comma == std::string_view::npos)
-      break;
-    start = comma + 1;
-  }
-  return fields;
-}
-
 }  // namespace
 
 ReferencePairs read_pairs_csv(const std::filesystem::path& path, double unit) {
   const std::string file = path.string();
   if (!(unit > 0.0) || !std::isfinite(unit)) {
-    throw InputError(fmt::format("must be a positive number of metres per unit (got {})", unit),
+    throw InputError(fmt::format("must be a positive number of metres per unit (got {:g})", unit),
                      file, 0, "unit");
   }
-  std::string text = read_whole_file(path);
-  std::string_view rest(text);
-  if (rest.substr(0, 3) == "\xEF\xBB\xBF")
-    rest.remove_prefix(3);  // UTF-8 byte order mark
-
+  CsvLines lines(path);
+  std::vector<std::string_view> fields;
   std::vector<double> values;
   std::size_t columns = 0;
-  long line_number = 0;
-  while (!rest.empty()) {
-    const std::size_t newline = rest.find('\n');
-    const std::string_view line = trim(rest.substr(0, newline));
-    rest.remove_prefix(newline == std::string_view::npos ? rest.size() : newline + 1);
-    ++line_number;
-    if (line.empty() || line.front() == '#')
-      continue;
-    const auto fields = split(line);
+  while (lines.next(fields)) {
     if (columns == 0) {
       if (fields.size() < 4 || fields.size() > 5) {
-        throw InputError("header must be plan_x,plan_y,grid_x,grid_y[,weight]", file, line_number);
+        throw InputError("header must be plan_x,plan_y,grid_x,grid_y[,weight]", file, lines.line());
       }
       for (std::size_t c = 0; c < fields.size(); ++c) {
         if (fields[c] != kColumns[c]) {
           throw InputError(fmt::format("header column {} must be '{}' (got '{}'); expected "
                                        "plan_x,plan_y,grid_x,grid_y[,weight]",
                                        c + 1, kColumns[c], fields[c]),
-                           file, line_number);
+                           file, lines.line());
         }
       }
       columns = fields.size();
@@ -80,26 +49,20 @@ ReferencePairs read_pairs_csv(const std::filesystem::path& path, double unit) {
     }
     if (fields.size() != columns) {
       throw InputError(fmt::format("expected {} values, got {}", columns, fields.size()), file,
-                       line_number);
+                       lines.line());
     }
     for (std::size_t c = 0; c < columns; ++c) {
-      double v = 0.0;
-      const char* begin = fields[c].data();
-      const char* end = begin + fields[c].size();
-      if (begin < end && *begin == '+')
-        ++begin;
-      const auto [ptr, ec] = std::from_chars(begin, end, v);
-      if (ec != std::errc() || ptr != end || begin == end) {
-        throw InputError(fmt::format("not a number: '{}'", fields[c]), file, line_number,
-                         std::string(kColumns[c]));
+      const std::string column(kColumns[c]);
+      if (c < 4) {
+        // Coordinates in metres must be physical (kMaxCoordinate): far beyond, squared
+        // distances overflow and every model's figures turn to infinity.
+        values.push_back(lines.number(fields[c], column, kMaxCoordinate / unit) * unit);
+        continue;
       }
-      if (!std::isfinite(v)) {
-        throw InputError("value must be finite", file, line_number, std::string(kColumns[c]));
-      }
-      if (c == 4 && v < 0.0) {
-        throw InputError("weight must be >= 0", file, line_number, "weight");
-      }
-      values.push_back(c < 4 ? v * unit : v);
+      const double weight = lines.number(fields[c], column, 1e300);
+      if (weight < 0.0)
+        throw InputError("weight must be >= 0", file, lines.line(), "weight");
+      values.push_back(weight);
     }
   }
   if (columns == 0)
@@ -107,6 +70,13 @@ ReferencePairs read_pairs_csv(const std::filesystem::path& path, double unit) {
   const Eigen::Index n = static_cast<Eigen::Index>(values.size() / columns);
   if (n == 0)
     throw InputError("no pairs after the header", file);
+  if (columns == 5) {
+    double total = 0.0;
+    for (std::size_t i = 4; i < values.size(); i += 5)
+      total += values[i];
+    if (!(total > 0.0))
+      throw InputError("every weight is 0: no pair would count", file, 0, "weight");
+  }
   ReferencePairs pairs;
   pairs.points_in_plan.resize(2, n);
   pairs.points_in_grid.resize(2, n);

@@ -8,69 +8,32 @@
 
 #include "floorgrid/core/error.hpp"
 #include "floorgrid/io/atomic_file.hpp"
+#include "floorgrid/io/csv_lines.hpp"
 
 namespace floorgrid::io {
 
-namespace {
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t'))
-    s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
-    s.remove_suffix(1);
-  return s;
-}
-}  // namespace
-
-PointsTable read_points_csv(const std::filesystem::path& path) {
+PointsTable read_points_csv(const std::filesystem::path& path, double max_abs) {
   const std::string file = path.string();
-  const std::string text = read_whole_file(path);
-  std::string_view rest(text);
-  if (rest.substr(0, 3) == "\xEF\xBB\xBF")
-    rest.remove_prefix(3);
   static const char* kNames[] = {"x", "y", "theta"};
+  CsvLines lines(path);
+  std::vector<std::string_view> fields;
   std::size_t columns = 0;
   std::vector<double> values;
-  long line_number = 0;
-  while (!rest.empty()) {
-    const std::size_t newline = rest.find('\n');
-    const std::string_view line = trim(rest.substr(0, newline));
-    rest.remove_prefix(newline == std::string_view::npos ? rest.size() : newline + 1);
-    ++line_number;
-    if (line.empty() || line.front() == '#')
-      continue;
-    std::vector<std::string_view> fields;
-    for (std::size_t start = 0;;) {
-      const std::size_t comma = line.find(',', start);
-      fields.push_back(trim(line.substr(start, comma - start)));
-      if (comma == std::string_view::npos)
-        break;
-      start = comma + 1;
-    }
+  while (lines.next(fields)) {
     if (columns == 0) {
       if ((fields.size() != 2 && fields.size() != 3) || fields[0] != "x" || fields[1] != "y" ||
           (fields.size() == 3 && fields[2] != "theta")) {
-        throw InputError("header must be x,y or x,y,theta", file, line_number);
+        throw InputError("header must be x,y or x,y,theta", file, lines.line());
       }
       columns = fields.size();
       continue;
     }
     if (fields.size() != columns) {
       throw InputError(fmt::format("expected {} values, got {}", columns, fields.size()), file,
-                       line_number);
+                       lines.line());
     }
-    for (std::size_t c = 0; c < columns; ++c) {
-      double v = 0.0;
-      const char* begin = fields[c].data();
-      const char* end = begin + fields[c].size();
-      if (begin < end && *begin == '+')
-        ++begin;
-      const auto [ptr, ec] = std::from_chars(begin, end, v);
-      if (ec != std::errc() || ptr != end || begin == end || !std::isfinite(v)) {
-        throw InputError(fmt::format("not a finite number: '{}'", fields[c]), file, line_number,
-                         kNames[c]);
-      }
-      values.push_back(v);
-    }
+    for (std::size_t c = 0; c < columns; ++c)
+      values.push_back(lines.number(fields[c], kNames[c], c < 2 ? max_abs : 1e300));
   }
   if (columns == 0)
     throw InputError("empty file: expected a header x,y or x,y,theta", file);

@@ -16,8 +16,8 @@ struct PointsTable {
 };
 
 /// Reads a points CSV; InputError naming the file, line and column for a bad header, row or
-/// number. Blank lines and `#` comments are skipped.
-PointsTable read_points_csv(const std::filesystem::path& path);
+/// number, or a coordinate beyond `max_abs`. Blank lines and `#` comments are skipped.
+PointsTable read_points_csv(const std::filesystem::path& path, double max_abs);
 
 /// One output row of `map`: the mapped point (and heading) or nothing when not invertible.
 struct MappedRow {

@@ -8,6 +8,7 @@
 #include "floorgrid/mapping/gaussian_process.hpp"
 #include "floorgrid/mapping/linear_combination.hpp"
 #include "floorgrid/mapping/local_transforms.hpp"
+#include "floorgrid/mapping/model_registry.hpp"
 #include "floorgrid/mapping/model_selection.hpp"
 #include "floorgrid/mapping/point_mapping.hpp"
 #include "floorgrid/mapping/thin_plate_spline_mapping.hpp"
@@ -30,10 +31,8 @@ struct MappingOptions {
   AutoOptions auto_select;          ///< auto: candidates and cross-validation
 };
 
-/// The model names make_mapping knows, in the SPEC's order.
-const std::vector<std::string>& mapping_model_names();
-
-/// A new, unfitted model. InputError (field "model") for an unknown name.
+/// A new, unfitted model (model_registry's entry for `options.model`). InputError (field "model")
+/// for an unknown name.
 std::unique_ptr<PointMapping> make_mapping(const MappingOptions& options);
 
 }  // namespace floorgrid

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "floorgrid/mapping/model_registry.hpp"
 #include "floorgrid/mapping/point_mapping.hpp"
 
 namespace floorgrid {
@@ -40,8 +41,9 @@ std::vector<double> leave_one_out_errors(const MappingOptions& options,
 
 /// Options of the `auto` model.
 struct AutoOptions {
-  /// The models compared, cheapest first (ties go to the earlier one).
-  std::vector<std::string> candidates = {"gt", "gt-affine", "gpgt", "gp", "tps", "dt", "ct", "lc"};
+  /// The models compared, cheapest first (ties go to the earlier one): the registry's
+  /// candidates by default.
+  std::vector<std::string> candidates = auto_candidates();
   CrossValidationOptions cv;  ///< how they are compared
 };
 

@@ -22,12 +22,20 @@ void validate_pairs(const ReferencePairs& pairs) {
       throw InputError("pair " + std::to_string(i + 1) + " has a coordinate that is not finite", {},
                        0, "pairs");
     }
+    if (pairs.points_in_plan.col(i).cwiseAbs().maxCoeff() > kMaxCoordinate ||
+        pairs.points_in_grid.col(i).cwiseAbs().maxCoeff() > kMaxCoordinate) {
+      throw InputError("pair " + std::to_string(i + 1) +
+                           " lies farther than 1e7 m from the origin: not a physical coordinate",
+                       {}, 0, "pairs");
+    }
     if (pairs.has_weights() && !(std::isfinite(pairs.weights[i]) && pairs.weights[i] >= 0.0)) {
       throw InputError(
           "pair " + std::to_string(i + 1) + " has a weight that is not finite and >= 0", {}, 0,
           "pairs");
     }
   }
+  if (pairs.has_weights() && pairs.size() > 0 && !(pairs.weights.sum() > 0.0))
+    throw InputError("every weight is 0: no pair would count", {}, 0, "pairs");
 }
 
 ReferencePairs select_pairs(const ReferencePairs& pairs, const std::vector<Eigen::Index>& indices) {

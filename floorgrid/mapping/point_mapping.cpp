@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "floorgrid/core/error.hpp"
+#include "floorgrid/core/validation.hpp"
 #include "floorgrid/geometry/transform_estimation.hpp"
 
 namespace floorgrid {
@@ -23,7 +24,24 @@ std::string to_string(MapFlag flag) {
   return "ok";
 }
 
-PointMapping::PointMapping(MappingCommonOptions common) : common_(std::move(common)) {}
+void validate(const MappingCommonOptions& options) {
+  require_option(
+      options.extrapolation_distance >= 0.0 && options.extrapolation_distance <= kMaxCoordinate,
+      "mapping.extrapolation_distance", options.extrapolation_distance,
+      "a distance in [0, 1e7] metres");
+  require_option(options.reduction.budget >= 3, "mapping.reduction.budget",
+                 options.reduction.budget, ">= 3");
+  require_option(options.support_budget >= 3, "mapping.support_budget", options.support_budget,
+                 ">= 3");
+  require_option(options.inverse_tolerance > 0.0 && options.inverse_tolerance < 1.0,
+                 "mapping.inverse_tolerance", options.inverse_tolerance, "in (0, 1)");
+  require_option(options.inverse_max_iterations >= 1, "mapping.inverse_max_iterations",
+                 options.inverse_max_iterations, ">= 1");
+}
+
+PointMapping::PointMapping(MappingCommonOptions common) : common_(std::move(common)) {
+  validate(common_);
+}
 PointMapping::~PointMapping() = default;
 
 FitSummary PointMapping::fit(const ReferencePairs& given) {

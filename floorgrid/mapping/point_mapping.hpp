@@ -54,6 +54,9 @@ struct MappingCommonOptions {
   std::uint64_t seed = 1;               ///< randomness of the fit (RANSAC, subsampling)
 };
 
+/// Checks `options`; throws InputError naming `mapping.<field>` when one is out of range.
+void validate(const MappingCommonOptions& options);
+
 /// What a fit did (printed by `fit`, stored in the model file).
 struct FitSummary {
   std::string model;                   ///< model name

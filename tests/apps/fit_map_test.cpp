@@ -152,5 +152,54 @@ TEST(FitAndMapCommands, BadInputExitsWithTwoNamingTheProblem) {
   EXPECT_FALSE(fs::exists(dir / "o.csv"));
 }
 
+/// Runs `floorgrid args` and expects exit 2 with every part in its message.
+void expect_refused(const std::string& args, const std::vector<std::string>& parts) {
+  const auto r = run_floorgrid(args);
+  EXPECT_EQ(r.status, 2) << args << "\n" << r.err;
+  for (const std::string& part : parts)
+    EXPECT_NE(r.err.find(part), std::string::npos) << args << ": '" << r.err << "' lacks " << part;
+}
+
+TEST(FitAndMapCommands, BadOptionsAndNonPhysicalInputAreRefused) {
+  TempDir dir;
+  write_pairs(dir / "pairs.csv", 1.0);
+  const std::string pairs = " --pairs " + quoted(dir / "pairs.csv");
+  const std::string out = " --out " + quoted(dir / "model.json");
+  // A negative budget used to wrap around to 18446744073709551611.
+  expect_refused("fit --model tps --budget -5" + pairs + out, {"'--budget'", "-5"});
+  // A fit whose dense matrices exceed the memory limit is refused before it starts (tps on 60
+  // pairs needs about 127 kB: over a limit of 1 kB).
+  expect_refused("fit --model tps --memory-limit 0.000001" + pairs + out,
+                 {"'--budget'", "with 60 of the pairs", "more than the limit"});
+  expect_refused("fit --model gt --extrapolation nan" + pairs + out, {"extrapolation"});
+  // The output would overwrite the input.
+  expect_refused("fit --model gt" + pairs + " --out " + quoted(dir / "." / "pairs.csv"),
+                 {"'--out'", "also the input"});
+  EXPECT_EQ(read_file(dir / "pairs.csv").substr(0, 28), "plan_x,plan_y,grid_x,grid_y\n");
+  // Coordinates of 1e150 m are not physical; all-zero weights count nothing.
+  write_file(dir / "far.csv", "plan_x,plan_y,grid_x,grid_y\n1e150,0,1,1\n0,1,2,2\n1,0,3,3\n");
+  expect_refused("fit --model gt --pairs " + quoted(dir / "far.csv") + out,
+                 {"far.csv:2", "'plan_x'", "not a physical coordinate"});
+  write_file(dir / "zero.csv",
+             "plan_x,plan_y,grid_x,grid_y,weight\n0,0,1,1,0\n0,1,2,2,0\n1,0,3,3,0\n");
+  expect_refused("fit --model lc --pairs " + quoted(dir / "zero.csv") + out, {"every weight is 0"});
+  // A model's own complaint about the pairs names the pairs file.
+  write_file(dir / "two.csv", "plan_x,plan_y,grid_x,grid_y\n0,0,1,1\n1,1,2,2\n");
+  expect_refused("fit --model lc --pairs " + quoted(dir / "two.csv") + out,
+                 {"two.csv", "needs at least 3"});
+  EXPECT_FALSE(std::filesystem::exists(dir / "model.json"));
+
+  ASSERT_EQ(run_floorgrid("fit --model gt" + pairs + out).status, 0);
+  expect_refused("map --model " + quoted(dir / "model.json") + " 1e300,0",
+                 {"'POINTS'", "not a physical coordinate"});
+  write_file(dir / "points.csv", "x,y\n1,2\n1e300,0\n");
+  expect_refused("map --model " + quoted(dir / "model.json") + " --points " +
+                     quoted(dir / "points.csv") + " --out " + quoted(dir / "mapped.csv"),
+                 {"points.csv:3", "'x'"});
+  expect_refused("map --model " + quoted(dir / "model.json") + " --points " +
+                     quoted(dir / "points.csv") + " --out " + quoted(dir / "points.csv"),
+                 {"also the input"});
+}
+
 }  // namespace
 }  // namespace floorgrid

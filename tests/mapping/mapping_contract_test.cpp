@@ -20,31 +20,30 @@ using test::make_pairs;
 using test::random_points;
 using test::Truth;
 
-/// What each model promises beyond the common contract.
-struct ModelTraits {
-  const char* name;
-  bool exact_similarity;      ///< recovers a similarity to 1e-10 x extent
-  bool non_rigid;             ///< follows local distortions (beats gt by half)
-  double identity_tolerance;  ///< relative to the extent
+/// One model of the registry under test: its name and what it promises beyond the common
+/// contract (ModelTraits). Adding a model to the registry adds it to every suite here.
+struct Model {
+  std::string name;
+  ModelTraits traits;
 };
 
-const ModelTraits kModels[] = {
-    {"lc", true, false, 1e-10},        {"gt", true, false, 1e-10},
-    {"gt-rigid", false, false, 1e-10}, {"gt-affine", true, false, 1e-10},
-    {"ct", false, true, 1e-10},        {"gp", false, true, 1e-4},
-    {"gpgt", false, true, 1e-10},      {"dt", true, true, 1e-10},
-    {"tps", true, true, 1e-10},        {"auto", true, true, 1e-10},
-};
+void PrintTo(const Model& model, std::ostream* os) {
+  *os << model.name;
+}
 
-void PrintTo(const ModelTraits& traits, std::ostream* os) {
-  *os << traits.name;
+/// Every model of the registry.
+std::vector<Model> all_models() {
+  std::vector<Model> out;
+  for (const ModelEntry& entry : model_registry())
+    out.push_back({std::string(entry.name), entry.traits});
+  return out;
 }
 
 /// The models with a given promise.
-std::vector<ModelTraits> models_where(bool ModelTraits::*promise) {
-  std::vector<ModelTraits> out;
-  for (const ModelTraits& m : kModels) {
-    if (m.*promise)
+std::vector<Model> models_where(bool ModelTraits::*promise) {
+  std::vector<Model> out;
+  for (const Model& m : all_models()) {
+    if (m.traits.*promise)
       out.push_back(m);
   }
   return out;
@@ -94,17 +93,17 @@ double mean_error(const PointMapping& m, const Eigen::Matrix2Xd& points, const T
   return sum / n;
 }
 
-class MappingContract : public ::testing::TestWithParam<ModelTraits> {};
+class MappingContract : public ::testing::TestWithParam<Model> {};
 
 TEST_P(MappingContract, IdentityPairsMapToIdentity) {
   const Truth identity = [](const Eigen::Vector2d& p) { return p; };
   const ReferencePairs pairs = make_pairs(random_points(1000, 1), identity, 0.0, 2);
   const auto m = fitted(GetParam().name, pairs);
   EXPECT_LE(max_error(*m, points_in_hull(pairs, 1000, 3), identity),
-            GetParam().identity_tolerance * domain_extent());
+            GetParam().traits.identity_tolerance * domain_extent());
 }
 
-class ExactModels : public ::testing::TestWithParam<ModelTraits> {};
+class ExactModels : public ::testing::TestWithParam<Model> {};
 
 TEST_P(ExactModels, RecoverASimilarityExactly) {
   const Truth truth = test::similarity(2.1, 1.07, {-31.0, 12.5});
@@ -113,7 +112,7 @@ TEST_P(ExactModels, RecoverASimilarityExactly) {
   EXPECT_LE(max_error(*m, points_in_hull(pairs, 1000, 6), truth), 1e-10 * domain_extent());
 }
 
-class NonRigidModels : public ::testing::TestWithParam<ModelTraits> {};
+class NonRigidModels : public ::testing::TestWithParam<Model> {};
 
 TEST_P(NonRigidModels, BeatAGlobalTransformByHalf) {
   const Eigen::Matrix2Xd plan = random_points(1000, 7);
@@ -235,13 +234,14 @@ TEST_P(MappingContract, ConfidenceFlagsTellHowFarToTrust) {
       1.0);
 }
 
-std::string model_test_name(const ::testing::TestParamInfo<ModelTraits>& param_info) {
+std::string model_test_name(const ::testing::TestParamInfo<Model>& param_info) {
   std::string name = param_info.param.name;
   std::replace(name.begin(), name.end(), '-', '_');
   return name;
 }
 
-INSTANTIATE_TEST_SUITE_P(Models, MappingContract, ::testing::ValuesIn(kModels), model_test_name);
+INSTANTIATE_TEST_SUITE_P(Models, MappingContract, ::testing::ValuesIn(all_models()),
+                         model_test_name);
 INSTANTIATE_TEST_SUITE_P(Models, ExactModels,
                          ::testing::ValuesIn(models_where(&ModelTraits::exact_similarity)),
                          model_test_name);
