@@ -7,6 +7,7 @@
 #include "apps/floorgrid/cli_util.hpp"
 #include "apps/floorgrid/commands.hpp"
 #include "floorgrid/core/error.hpp"
+#include "floorgrid/core/parallel.hpp"
 #include "floorgrid/io/model_io.hpp"
 #include "floorgrid/io/points_csv.hpp"
 
@@ -68,12 +69,15 @@ void add_map_command(CLI::App& root) {
     if (!args->points.empty()) {
       refuse_overwriting_input(args->points, args->out, "--out");
       const io::PointsTable table = io::read_points_csv(args->points, max_abs);
-      std::vector<io::MappedRow> rows;
-      rows.reserve(static_cast<std::size_t>(table.points.cols()));
-      for (Eigen::Index i = 0; i < table.points.cols(); ++i) {
-        const double* heading = table.has_headings() ? &table.headings[i] : nullptr;
-        rows.push_back(map_one(*model, table.points.col(i), heading, args->inverse));
-      }
+      // Rows are independent and models are immutable once loaded: two threads share them.
+      std::vector<io::MappedRow> rows(static_cast<std::size_t>(table.points.cols()));
+      parallel_chunks(rows.size(), 4096, kDefaultThreads, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t r = begin; r < end; ++r) {
+          const auto i = static_cast<Eigen::Index>(r);
+          const double* heading = table.has_headings() ? &table.headings[i] : nullptr;
+          rows[r] = map_one(*model, table.points.col(i), heading, args->inverse);
+        }
+      });
       io::write_mapped_csv(rows, table.has_headings(), args->out);
       fmt::print("mapped {} {} with {} ({}) to {}\n", rows.size(),
                  table.has_headings() ? "poses" : "points", model->name(),

@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "floorgrid/core/error.hpp"
+#include "floorgrid/core/parallel.hpp"
 #include "floorgrid/mapping/model_file.hpp"
 
 namespace floorgrid {
@@ -35,6 +36,10 @@ void LinearCombinationMapping::fit_model(const ReferencePairs& pairs, FitSummary
 }
 
 namespace {
+
+// Points per task of a batch: large enough that a task costs far more than handing it out.
+constexpr std::size_t kBatchChunk = 4096;
+
 /// Whether triangle abc has every angle's sine above `min_sin` (and is not degenerate).
 bool well_shaped(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c,
                  double min_sin) {
@@ -54,41 +59,46 @@ LinearCombinationMapping::Triangle LinearCombinationMapping::choose(
   const auto& P = pairs_.points_in_plan;
   for (std::size_t k = static_cast<std::size_t>(options_.neighbours);; k *= 2) {
     const auto near = plan_index_.nearest_k(p, k);
-    Triangle best, best_containing;
-    double best_score = std::numeric_limits<double>::infinity(), best_containing_score = best_score;
-    for (std::size_t i = 0; i < near.size(); ++i) {
-      for (std::size_t j = i + 1; j < near.size(); ++j) {
-        for (std::size_t l = j + 1; l < near.size(); ++l) {
-          const Eigen::Vector2d a = P.col(near[i].index), b = P.col(near[j].index),
-                                c = P.col(near[l].index);
+    // A triangle scores by its farthest vertex (the neighbours come nearest first): grow the
+    // farthest vertex l and try every pair of nearer ones, so the first triangle that holds p
+    // is the best one, usually among the first few neighbours.
+    Triangle nearest_not_holding;
+    for (std::size_t l = 2; l < near.size(); ++l) {
+      const Eigen::Vector2d c = P.col(near[l].index);
+      for (std::size_t i = 0; i + 1 < l; ++i) {
+        const Eigen::Vector2d a = P.col(near[i].index);
+        for (std::size_t j = i + 1; j < l; ++j) {
+          const Eigen::Vector2d b = P.col(near[j].index);
           if (!well_shaped(a, b, c, min_sin_angle_))
             continue;
-          const double score = near[l].distance;  // the farthest vertex (sorted by distance)
           const Triangle t{near[i].index, near[j].index, near[l].index};
           Eigen::Matrix2d R;
           R << b - a, c - a;
           const Eigen::Vector2d w = R.inverse() * (p - a);
-          if (w.minCoeff() >= 0.0 && w.sum() <= 1.0) {
-            if (score < best_containing_score) {
-              best_containing_score = score;
-              best_containing = t;
-            }
-          } else if (score < best_score) {
-            best_score = score;
-            best = t;
-          }
+          if (w.minCoeff() >= 0.0 && w.sum() <= 1.0)
+            return t;
+          if (!nearest_not_holding.valid())
+            nearest_not_holding = t;
         }
       }
-      // Triples only grow farther from here: once one qualifies, later ones cannot score better
-      // than it on the farthest-vertex criterion.
-      if (best_containing.valid() && near[i].distance > best_containing_score)
-        break;
     }
-    if (best_containing.valid())
-      return best_containing;
-    if (best.valid() || near.size() < k || k >= 256)
-      return best;
+    // No triangle holds p (it lies outside the pairs): the nearest well-shaped one extrapolates.
+    if (nearest_not_holding.valid() || near.size() < k || k >= 256)
+      return nearest_not_holding;
   }
+}
+
+Eigen::Matrix2Xd LinearCombinationMapping::forward_batch(
+    const Eigen::Ref<const Eigen::Matrix2Xd>& points_in_plan) const {
+  Eigen::Matrix2Xd out(2, points_in_plan.cols());
+  parallel_chunks(static_cast<std::size_t>(points_in_plan.cols()), kBatchChunk, kDefaultThreads,
+                  [&](std::size_t begin, std::size_t end) {
+                    for (std::size_t i = begin; i < end; ++i) {
+                      const auto c = static_cast<Eigen::Index>(i);
+                      out.col(c) = forward(points_in_plan.col(c));
+                    }
+                  });
+  return out;
 }
 
 void LinearCombinationMapping::affine(const Triangle& t, Eigen::Matrix2d& A,
