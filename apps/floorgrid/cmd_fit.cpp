@@ -3,28 +3,19 @@
 #include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
-#include <unistd.h>
-
 #include "apps/floorgrid/cli_util.hpp"
 #include "apps/floorgrid/commands.hpp"
 #include "floorgrid/core/error.hpp"
 #include "floorgrid/io/atomic_file.hpp"
 #include "floorgrid/io/model_io.hpp"
 #include "floorgrid/io/pairs_csv.hpp"
+#include "floorgrid/io/system_memory.hpp"
 #include "floorgrid/io/value_json.hpp"
 #include "floorgrid/mapping/mapping_factory.hpp"
 
 namespace floorgrid::app {
 
 namespace {
-
-/// Half of this machine's physical memory, in GiB (8 when it cannot be read).
-double default_memory_limit_gb() {
-  const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
-  if (pages <= 0 || page <= 0)
-    return 8.0;
-  return 0.5 * static_cast<double>(pages) * static_cast<double>(page) / (1u << 30);
-}
 
 /// Refuses a fit whose dense matrices would not fit the memory limit, before it starts.
 void check_fit_memory(const MappingOptions& options, std::size_t pairs, double limit_gb) {
@@ -63,7 +54,7 @@ void add_fit_command(CLI::App& root) {
     MappingOptions options;
     // Signed, so that a negative budget is refused rather than wrapped around.
     long long budget = static_cast<long long>(MappingOptions{}.common.reduction.budget);
-    double memory_limit_gb = default_memory_limit_gb();
+    double memory_limit_gb = io::default_memory_limit_gb();
   };
   auto args = std::make_shared<Args>();
   std::string models;

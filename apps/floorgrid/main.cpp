@@ -8,8 +8,10 @@
 
 #include "apps/floorgrid/commands.hpp"
 #include "floorgrid/core/error.hpp"
+#include "floorgrid/io/atomic_file.hpp"
 
 int main(int argc, char** argv) {
+  floorgrid::io::remove_temporaries_on_signals();
   CLI::App root{"floorgrid: align a CAD floorplan with a robot's occupancy gridmap"};
   root.require_subcommand(1);
   root.set_version_flag("--version", "floorgrid 0.1.0");

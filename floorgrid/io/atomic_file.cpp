@@ -2,6 +2,8 @@
 
 #include <unistd.h>
 
+#include <csignal>
+
 #include <atomic>
 #include <cerrno>
 #include <cstring>
@@ -12,6 +14,51 @@
 namespace floorgrid::io {
 
 namespace {
+
+// The temporary files being written, for the signal handler: fixed slots, so that the handler
+// reads only memory that is never freed and calls only unlink() (async-signal-safe).
+constexpr std::size_t kSlots = 64;
+constexpr std::size_t kPathBytes = 4096;
+struct TemporarySlot {
+  std::atomic<bool> taken{false};  // owned by an AtomicFile
+  std::atomic<bool> live{false};   // `path` holds a complete path to remove
+  char path[kPathBytes] = {};
+};
+TemporarySlot g_temporaries[kSlots];
+
+/// Registers a temporary file; returns its slot, or -1 when none is free or the path too long
+/// (the file is then only removed by the AtomicFile itself).
+int register_temporary(const std::filesystem::path& path) {
+  const std::string text = path.string();
+  if (text.size() >= kPathBytes)
+    return -1;
+  for (std::size_t i = 0; i < kSlots; ++i) {
+    bool expected = false;
+    if (g_temporaries[i].taken.compare_exchange_strong(expected, true)) {
+      std::memcpy(g_temporaries[i].path, text.c_str(), text.size() + 1);
+      g_temporaries[i].live.store(true);
+      return static_cast<int>(i);
+    }
+  }
+  return -1;
+}
+
+void unregister_temporary(int slot) {
+  if (slot < 0)
+    return;
+  g_temporaries[slot].live.store(false);
+  g_temporaries[slot].taken.store(false);
+}
+
+extern "C" void remove_temporaries_and_stop(int signal_number) {
+  for (TemporarySlot& slot : g_temporaries) {
+    if (slot.live.load())
+      ::unlink(slot.path);
+  }
+  std::signal(signal_number, SIG_DFL);
+  std::raise(signal_number);
+}
+
 std::filesystem::path temporary_beside(const std::filesystem::path& target) {
   static std::atomic<unsigned> counter{0};
   std::filesystem::path tmp = target;
@@ -22,8 +69,10 @@ std::filesystem::path temporary_beside(const std::filesystem::path& target) {
 
 AtomicFile::AtomicFile(std::filesystem::path target)
     : target_(std::move(target)), temporary_(temporary_beside(target_)) {
+  slot_ = register_temporary(temporary_);
   stream_.open(temporary_, std::ios::binary | std::ios::trunc);
   if (!stream_) {
+    unregister_temporary(slot_);
     throw InputError(std::string("cannot write here: ") + std::strerror(errno), target_.string());
   }
 }
@@ -34,6 +83,7 @@ AtomicFile::~AtomicFile() {
     std::error_code ec;
     std::filesystem::remove(temporary_, ec);
   }
+  unregister_temporary(slot_);
 }
 
 void AtomicFile::commit() {
@@ -48,6 +98,17 @@ void AtomicFile::commit() {
   if (ec)
     throw InputError("cannot replace the file: " + ec.message(), target_.string());
   committed_ = true;
+  unregister_temporary(slot_);
+  slot_ = -1;
+}
+
+void remove_temporaries_on_signals() {
+  for (const int signal_number : {SIGINT, SIGTERM, SIGHUP}) {
+    struct sigaction action = {};
+    action.sa_handler = remove_temporaries_and_stop;
+    sigemptyset(&action.sa_mask);
+    sigaction(signal_number, &action, nullptr);
+  }
 }
 
 void write_file_atomically(const std::filesystem::path& path, const std::string& bytes) {

@@ -27,7 +27,13 @@ class AtomicFile {
   std::filesystem::path temporary_;
   std::ofstream stream_;
   bool committed_ = false;
+  int slot_ = -1;  // in the registry of temporaries removed on signals
 };
+
+/// Removes every live temporary file of an AtomicFile when the process is told to stop
+/// (SIGINT, SIGTERM, SIGHUP), then stops it as the signal would have: an interrupted run leaves
+/// neither a torn target nor a temporary file behind. Call once, early in main().
+void remove_temporaries_on_signals();
 
 /// Writes `bytes` to `path` atomically.
 void write_file_atomically(const std::filesystem::path& path, const std::string& bytes);

@@ -1,11 +1,14 @@
 #include "floorgrid/io/carmen_parse.hpp"
 
 #include <charconv>
+#include <cmath>
 #include <cstdlib>
+#include <sstream>
 #include <string>
 #include <system_error>
 
 #include "floorgrid/core/error.hpp"
+#include "floorgrid/geometry/reference_pairs.hpp"
 
 namespace floorgrid::io {
 
@@ -85,6 +88,16 @@ double FieldCursor::number(std::string_view field) {
   return value;
 }
 
+double FieldCursor::finite(std::string_view field, double max_abs) {
+  const double value = number(field);
+  if (!(std::abs(value) <= max_abs)) {
+    std::ostringstream message;
+    message << "must be a finite number within " << max_abs << " (got " << value << ")";
+    fail(message.str(), field);
+  }
+  return value;
+}
+
 double FieldCursor::indexed_number(std::string_view prefix, std::size_t index) {
   while (position_ < text_.size() && is_space(text_[position_]))
     ++position_;
@@ -121,6 +134,16 @@ long FieldCursor::integer(std::string_view field, long min, long max) {
   return value;
 }
 
+bool FieldCursor::next_is_number() {
+  while (position_ < text_.size() && is_space(text_[position_]))
+    ++position_;
+  std::size_t end = position_;
+  while (end < text_.size() && !is_space(text_[end]))
+    ++end;
+  double value = 0.0;
+  return end == position_ || parse_number(text_.substr(position_, end - position_), value);
+}
+
 bool FieldCursor::at_end() {
   while (position_ < text_.size() && is_space(text_[position_]))
     ++position_;
@@ -144,10 +167,12 @@ namespace {
 
 Pose2 read_pose(FieldCursor& fields, std::string_view x, std::string_view y,
                 std::string_view theta) {
+  // A pose is metres within kMaxCoordinate and a finite heading (NaN would poison every
+  // filter silently).
   Pose2 pose;
-  pose.x = fields.number(x);
-  pose.y = fields.number(y);
-  pose.theta = fields.number(theta);
+  pose.x = fields.finite(x, kMaxCoordinate);
+  pose.y = fields.finite(y, kMaxCoordinate);
+  pose.theta = fields.finite(theta, 1e6);
   return pose;
 }
 
@@ -155,6 +180,14 @@ Pose2 read_pose(FieldCursor& fields, std::string_view x, std::string_view y,
 // (they copy the word after the timestamp) and its logplayer the logger timestamp, so a line
 // without them is not a CARMEN log line: strict, no "old style" without them.
 double read_tail(FieldCursor& fields) {
+  // A count one too large shifts every field after the readings: the host name lands where the
+  // timestamp should be.
+  if (!fields.next_is_number()) {
+    fields.fail(
+        "not a number where the timestamp should be: does the line hold fewer readings "
+        "than its count says?",
+        "timestamp");
+  }
   const double timestamp = fields.number("timestamp");
   fields.word("host");
   fields.number("logger_timestamp");

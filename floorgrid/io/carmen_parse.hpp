@@ -20,11 +20,15 @@ class FieldCursor {
   std::string_view word(std::string_view field);
   /// The next field as a number (strtod syntax: also "nan", "inf", a leading '+').
   double number(std::string_view field);
+  /// The next field as a finite number within `max_abs`: a pose's coordinate or heading.
+  double finite(std::string_view field, double max_abs);
   /// The next field as an integer in [min, max].
   long integer(std::string_view field, long min, long max);
   /// The next field as a number, named "<prefix> <index>" (e.g. "range 17") only on error.
   double indexed_number(std::string_view prefix, std::size_t index);
-  /// The fields left.
+  /// Whether the next field (if any) reads as a number.
+  bool next_is_number();
+  /// Whether no field is left.
   bool at_end();
   /// Throws unless every field was read.
   void expect_end();

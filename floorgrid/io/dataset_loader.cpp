@@ -1,13 +1,19 @@
 #include "floorgrid/io/dataset_loader.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
+#include <cmath>
 
 #include "floorgrid/core/error.hpp"
 #include "floorgrid/io/carmen_log.hpp"
 #include "floorgrid/io/map_io.hpp"
 #include "floorgrid/io/pairs_csv.hpp"
+#include "floorgrid/io/system_memory.hpp"
 #include "floorgrid/io/truth_json.hpp"
+#include "floorgrid/maps/crop.hpp"
 #include "floorgrid/maps/rasterize.hpp"
+#include "floorgrid/pipeline/memory_estimate.hpp"
 #include "floorgrid/robot/odometry_noise.hpp"
 
 namespace floorgrid::io {
@@ -26,7 +32,62 @@ Eigen::Matrix2Xd occupied_cell_centres(const OccupancyGrid& grid) {
   return out;
 }
 
-LoadedDataset load_dataset(const std::filesystem::path& path, const PlanRasterOptions& raster) {
+namespace {
+
+/// A map of more than limits.crop_above_cells cells cropped to its known area (a warning
+/// says so); smaller maps are left as they are, so that their results do not move.
+void crop_large_map(OccupancyGrid& grid, const std::string& what, const DatasetLimits& limits,
+                    std::vector<std::string>& warnings) {
+  if (grid.geometry().size() <= limits.crop_above_cells)
+    return;
+  const int margin = static_cast<int>(std::ceil(limits.crop_margin / grid.resolution()));
+  const CellBox box = known_cells_box(grid, margin);
+  if (box.cells() >= grid.geometry().size())
+    return;
+  warnings.push_back(fmt::format(
+      "{}: cropped from {} x {} to {} x {} cells (its known area and "
+      "{:g} m around it)",
+      what, grid.width(), grid.height(), box.x1 - box.x0, box.y1 - box.y0, limits.crop_margin));
+  grid = crop(grid, box);
+}
+
+/// Refuses a map without a free cell: no filter could be placed on it.
+void require_free_space(const OccupancyGrid& grid, const std::filesystem::path& file,
+                        const std::string& field) {
+  if (grid.counts().free == 0) {
+    throw InputError(
+        "the map has no free cell: nowhere to localize (check its thresholds, "
+        "negate and mode)",
+        file.string(), 0, field);
+  }
+}
+
+/// Refuses maps the main job could not localize in within the memory limit.
+void check_memory(const LoadedDataset& d, const DatasetLimits& limits) {
+  const double limit = limits.memory_gb > 0.0 ? limits.memory_gb : default_memory_limit_gb();
+  std::size_t readings = 0;
+  if (d.log) {
+    for (const LaserScan& scan : d.log->scans)
+      readings += scan.ranges.size();
+  }
+  const double needed = static_cast<double>(alignment_memory_bytes(
+                            d.plan_grid.geometry().size(), d.gridmap.geometry().size(), readings)) /
+                        (1u << 30);
+  if (needed > limit) {
+    throw InputError(
+        fmt::format("the plan ({} x {} cells) and the gridmap ({} x {} cells) would need about "
+                    "{:.1f} GiB to localize in, more than the limit of {:.1f} GiB: crop the maps "
+                    "to the building, or give a coarser resolution",
+                    d.plan_grid.width(), d.plan_grid.height(), d.gridmap.width(),
+                    d.gridmap.height(), needed, limit),
+        d.manifest.manifest_path.string(), 0, "gridmap");
+  }
+}
+
+}  // namespace
+
+LoadedDataset load_dataset(const std::filesystem::path& path, const PlanRasterOptions& raster,
+                           const DatasetLimits& limits) {
   LoadedDataset d;
   d.manifest = read_manifest(path);
   const DatasetManifest& m = d.manifest;
@@ -44,7 +105,11 @@ LoadedDataset load_dataset(const std::filesystem::path& path, const PlanRasterOp
     r.resolution = raster.resolution;
     r.wall_thickness = raster.wall_thickness;
     r.margin = raster.margin;
-    d.plan_grid = rasterize(dxf.plan, r);
+    try {
+      d.plan_grid = rasterize(dxf.plan, r);
+    } catch (const InputError& e) {
+      throw InputError(e.message(), m.floorplan.string(), 0, "floorplan");
+    }
     d.plan_wall_samples = dxf.plan.sample_points(0.05);
     d.plan = std::move(dxf.plan);
     d.dxf_report = std::move(dxf.report);
@@ -57,6 +122,9 @@ LoadedDataset load_dataset(const std::filesystem::path& path, const PlanRasterOp
   LoadedMap grid = read_map(m.gridmap, m.gridmap_resolution, m.gridmap_origin, "gridmap");
   d.warnings.insert(d.warnings.end(), grid.warnings.begin(), grid.warnings.end());
   d.gridmap = std::move(grid.grid);
+  crop_large_map(d.gridmap, "gridmap " + m.gridmap.string(), limits, d.warnings);
+  if (!d.plan)
+    crop_large_map(d.plan_grid, "floorplan " + m.floorplan.string(), limits, d.warnings);
   if (m.log) {
     CarmenReadOptions options;
     options.laser = m.laser;
@@ -67,6 +135,9 @@ LoadedDataset load_dataset(const std::filesystem::path& path, const PlanRasterOp
     }
     d.log = std::move(log);
   }
+  require_free_space(d.gridmap, m.gridmap, "gridmap");
+  require_free_space(d.plan_grid, m.floorplan, "floorplan");
+  check_memory(d, limits);
   if (m.truth.warp)
     d.truth_warp = read_plan_truth(*m.truth.warp);
   if (m.truth.manual_pairs)

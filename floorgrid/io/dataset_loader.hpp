@@ -21,6 +21,17 @@ struct PlanRasterOptions {
   double margin = 2.0;          ///< metres of free border around the plan
 };
 
+/// What loading a dataset may cost.
+struct DatasetLimits {
+  /// GiB the main job may allocate for the maps it derives (0: half of this machine's memory);
+  /// maps that would need more are refused at load with the estimate and the limit.
+  double memory_gb = 0.0;
+  /// Maps of more cells than this are cropped to their known (free or occupied) cells plus
+  /// crop_margin metres: a large canvas of unknown around a building costs nothing then.
+  std::size_t crop_above_cells = 16'000'000;
+  double crop_margin = 5.0;  ///< metres
+};
+
 /// Everything a dataset holds, read and prepared.
 struct LoadedDataset {
   DatasetManifest manifest;                    ///< the manifest read
@@ -37,8 +48,11 @@ struct LoadedDataset {
 
 /// Reads a dataset (dataset.yaml or its folder): the plan (DXF rasterized, or a raster plan),
 /// the gridmap, the log (with the manifest's laser settings, and odometry noise added when
-/// `odometry_noise` is given), and the truth it references. InputError on bad input.
-LoadedDataset load_dataset(const std::filesystem::path& path, const PlanRasterOptions& raster = {});
+/// `odometry_noise` is given), and the truth it references. Large maps are cropped to their
+/// known area, and maps the main job could not localize in within `limits.memory_gb` are
+/// refused. InputError on bad input.
+LoadedDataset load_dataset(const std::filesystem::path& path, const PlanRasterOptions& raster = {},
+                           const DatasetLimits& limits = {});
 
 /// The occupied cell centres of a grid (the "walls" of a raster plan), 2 x N, metres.
 Eigen::Matrix2Xd occupied_cell_centres(const OccupancyGrid& grid);

@@ -6,6 +6,7 @@
 
 #include "floorgrid/core/error.hpp"
 #include "floorgrid/io/atomic_file.hpp"
+#include "floorgrid/io/map_io.hpp"
 #include "floorgrid/io/yaml_fields.hpp"
 
 namespace floorgrid::io {
@@ -26,11 +27,18 @@ std::filesystem::path resolve(const YamlFields& yaml, const std::string& key,
   return full;
 }
 
-std::optional<double> positive(const YamlFields& yaml, const std::string& key) {
+/// A number in [lo, hi] when given.
+std::optional<double> within(const YamlFields& yaml, const std::string& key, double lo, double hi,
+                             const char* what) {
   const auto value = yaml.optional_number(key);
-  if (value && !(*value > 0.0))
-    yaml.fail(key, fmt::format("must be > 0 (got {})", *value));
+  if (value && !(*value >= lo && *value <= hi))
+    yaml.fail(key, fmt::format("must be {} from {:g} to {:g} (got {:g})", what, lo, hi, *value));
   return value;
+}
+
+/// Metres per pixel of a bare image, within the maps' bounds.
+std::optional<double> resolution(const YamlFields& yaml, const std::string& key) {
+  return within(yaml, key, kMinResolution, kMaxResolution, "metres per pixel");
 }
 
 LaserSettings read_laser(const YamlFields& laser) {
@@ -112,7 +120,7 @@ DatasetManifest read_manifest(const std::filesystem::path& path) {
 
   m.name = yaml.optional_string("name").value_or("");
   m.floorplan = resolve(yaml, "floorplan", folder);
-  m.floorplan_resolution = positive(yaml, "floorplan_resolution");
+  m.floorplan_resolution = resolution(yaml, "floorplan_resolution");
   m.floorplan_origin = yaml.optional_pose("floorplan_origin");
   m.floorplan_units = yaml.optional_string("floorplan_units").value_or("auto");
   if (std::find(kUnits.begin(), kUnits.end(), m.floorplan_units) == kUnits.end()) {
@@ -124,7 +132,8 @@ DatasetManifest read_manifest(const std::filesystem::path& path) {
     if (text && *text == "auto") {
       m.floorplan_scale.reset();
     } else {
-      m.floorplan_scale = positive(yaml, "floorplan_scale");
+      m.floorplan_scale =
+          within(yaml, "floorplan_scale", 1e-4, 1e4, "a scale (world metres per plan metre)");
     }
   }
   m.floorplan_layers =
@@ -132,7 +141,7 @@ DatasetManifest read_manifest(const std::filesystem::path& path) {
   m.floorplan_layers_exclude =
       yaml.optional_strings("floorplan_layers_exclude").value_or(std::vector<std::string>{});
   m.gridmap = resolve(yaml, "gridmap", folder);
-  m.gridmap_resolution = positive(yaml, "gridmap_resolution");
+  m.gridmap_resolution = resolution(yaml, "gridmap_resolution");
   m.gridmap_origin = yaml.optional_pose("gridmap_origin");
   if (yaml.has("log"))
     m.log = resolve(yaml, "log", folder);

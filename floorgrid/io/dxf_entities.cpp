@@ -239,6 +239,12 @@ class Expander {
     if (e.type == "LINE") {
       curves.push_back(DrawingLine{world_xy(T, e.point(10)), world_xy(T, e.point(11))});
     } else if (e.type == "ARC" || e.type == "CIRCLE") {
+      if (!(e.number(40) > 0.0)) {
+        warn("radius", at_line(e) + " is skipped: its radius " + std::to_string(e.number(40)) +
+                           " is not positive");
+        ++report_.unsupported_skipped[e.type + " (radius <= 0)"];
+        return;
+      }
       const double a0 = e.type == "ARC" ? e.number(50) * kDegree : 0.0;
       const double a1 = e.type == "ARC" ? sweep_end(a0, e.number(51) * kDegree) : kTwoPi;
       add_arc(through_ocs(T, e), e.point(10), e.number(40), a0, a1, curves);
@@ -261,9 +267,10 @@ class Expander {
       ++report_.unsupported_skipped[e.type];
       return;
     }
-    if (!std::all_of(curves.begin(), curves.end(), [](const Curve& c) { return is_finite(c); })) {
-      warn("overflow", at_line(e) + " is skipped: its coordinates overflow once transformed");
-      ++report_.unsupported_skipped[e.type + " (overflow)"];
+    if (!std::all_of(curves.begin(), curves.end(), [](const Curve& c) { return is_physical(c); })) {
+      warn("overflow", at_line(e) + " is skipped: its coordinates are not finite or lie beyond " +
+                           "1e10 drawing units (10,000 km in mm) once transformed");
+      ++report_.unsupported_skipped[e.type + " (beyond 1e10 units)"];
       return;
     }
     emit(e.type, layer, curves);

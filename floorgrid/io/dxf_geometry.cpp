@@ -36,23 +36,27 @@ int DrawingGeometry::layer_index(const std::string& layer) {
   return it->second;
 }
 
-bool is_finite(const decltype(DrawingItem::curve)& curve) {
-  const auto all_finite = [](const auto& points) {
-    return std::all_of(points.begin(), points.end(),
-                       [](const Eigen::Vector2d& p) { return p.allFinite(); });
+bool is_physical(const decltype(DrawingItem::curve)& curve) {
+  // Finite and within kMaxDrawingCoordinate: NaN fails every comparison.
+  const auto near = [](const Eigen::Vector2d& p) {
+    return std::abs(p.x()) <= kMaxDrawingCoordinate && std::abs(p.y()) <= kMaxDrawingCoordinate;
+  };
+  const auto small = [](double v) { return std::abs(v) <= kMaxDrawingCoordinate; };
+  const auto all_near = [&](const auto& points) {
+    return std::all_of(points.begin(), points.end(), near);
   };
   return std::visit(Overloaded{
-                        [](const DrawingLine& l) { return l.a.allFinite() && l.b.allFinite(); },
-                        [](const CircularArc2& a) {
-                          return a.center.allFinite() && std::isfinite(a.radius) &&
-                                 std::isfinite(a.start) && std::isfinite(a.end);
+                        [&](const DrawingLine& l) { return near(l.a) && near(l.b); },
+                        [&](const CircularArc2& a) {
+                          return near(a.center) && small(a.radius) && std::isfinite(a.start) &&
+                                 std::isfinite(a.end);
                         },
-                        [](const DrawingEllipse& e) {
-                          return e.center.allFinite() && e.u.allFinite() && e.v.allFinite() &&
-                                 std::isfinite(e.t0) && std::isfinite(e.t1);
+                        [&](const DrawingEllipse& e) {
+                          return near(e.center) && near(e.u) && near(e.v) && std::isfinite(e.t0) &&
+                                 std::isfinite(e.t1);
                         },
-                        [&](const BSpline2& s) { return all_finite(s.control); },
-                        [&](const DrawingPolyline& p) { return all_finite(p.points); },
+                        [&](const BSpline2& s) { return all_near(s.control); },
+                        [&](const DrawingPolyline& p) { return all_near(p.points); },
                     },
                     curve);
 }

@@ -53,8 +53,12 @@ struct DrawingGeometry {
   std::map<std::string, int> index_;
 };
 
-/// Whether every number defining `curve` is finite (transforms of huge values can overflow).
-bool is_finite(const decltype(DrawingItem::curve)& curve);
+/// Drawing units a coordinate may lie from the origin: 1e10 (10,000 km in millimetres). Beyond,
+/// an entity is not a building's (stray entities and overflowing transforms are skipped).
+inline constexpr double kMaxDrawingCoordinate = 1e10;
+
+/// Whether every number defining `curve` is finite and within kMaxDrawingCoordinate.
+bool is_physical(const decltype(DrawingItem::curve)& curve);
 
 /// Bounds of every item (kept or not), drawing units. Ellipses are bounded by sampling and
 /// splines by their control points: the bounds tell units, not geometry.

@@ -25,8 +25,9 @@ void check_size(const std::filesystem::path& path, long long width, long long he
       static_cast<unsigned long long>(width) * static_cast<unsigned long long>(height) >
           limits.max_pixels) {
     throw InputError("image size " + std::to_string(width) + " x " + std::to_string(height) +
-                         " is absurd (limit " + std::to_string(limits.max_side) +
-                         " pixels per side, " + std::to_string(limits.max_pixels) + " in all)",
+                         " is too large (the limit is " + std::to_string(limits.max_side) +
+                         " pixels per side and " + std::to_string(limits.max_pixels) +
+                         " in all, about 2.5 GB as a map): crop it or use a coarser resolution",
                      path.string());
   }
 }
@@ -208,16 +209,10 @@ GreyImage read_png(const std::string& bytes, const std::filesystem::path& path,
 
   png_set_expand(png);  // palette -> RGB, low-bit grey -> 8 bit, tRNS -> alpha
   png_set_scale_16(png);
-  png_set_interlace_handling(png);
+  const int passes = png_set_interlace_handling(png);
   png_read_update_info(png, info);
   const int channels = png_get_channels(png, info);
   const std::size_t row_bytes = png_get_rowbytes(png, info);
-  pixels.resize(row_bytes * height);
-  rows.resize(height);
-  for (png_uint_32 r = 0; r < height; ++r)
-    rows[r] = pixels.data() + r * row_bytes;
-  png_read_image(png, rows.data());
-  png_read_end(png, nullptr);
 
   const bool color = channels >= 3;
   const bool has_alpha = channels == 2 || channels == 4;
@@ -233,12 +228,34 @@ GreyImage read_png(const std::string& bytes, const std::filesystem::path& path,
   image.max_level = color ? 3 * 255 : 255;  // RGB: the mean of the channels, kept exact as a sum
   if (has_alpha)
     image.alpha.resize(count);
-  for (std::size_t i = 0; i < count; ++i) {
-    const std::uint8_t* p = pixels.data() + i * channels;
-    image.level[i] = static_cast<std::uint16_t>(color ? p[0] + p[1] + p[2] : p[0]);
-    if (has_alpha)
-      image.alpha[i] = p[channels - 1];
+  const auto keep_row = [&](png_uint_32 r, const std::uint8_t* row) {
+    for (std::size_t x = 0; x < width; ++x) {
+      const std::uint8_t* p = row + x * channels;
+      const std::size_t i = static_cast<std::size_t>(r) * width + x;
+      image.level[i] = static_cast<std::uint16_t>(color ? p[0] + p[1] + p[2] : p[0]);
+      if (has_alpha)
+        image.alpha[i] = p[channels - 1];
+    }
+  };
+  if (passes == 1) {
+    // Row by row: the decoded file never exists whole next to the image (an RGBA map of 4e8
+    // pixels would take 1.6 GB more).
+    pixels.resize(row_bytes);
+    for (png_uint_32 r = 0; r < height; ++r) {
+      png_read_row(png, pixels.data(), nullptr);
+      keep_row(r, pixels.data());
+    }
+  } else {
+    // Interlaced: the passes fill the whole image.
+    pixels.resize(row_bytes * height);
+    rows.resize(height);
+    for (png_uint_32 r = 0; r < height; ++r)
+      rows[r] = pixels.data() + r * row_bytes;
+    png_read_image(png, rows.data());
+    for (png_uint_32 r = 0; r < height; ++r)
+      keep_row(r, rows[r]);
   }
+  png_read_end(png, nullptr);
   return image;
 }
 

@@ -23,10 +23,13 @@ struct GreyImage {
   bool has_alpha() const { return !alpha.empty(); }
 };
 
-/// Limits that protect against absurd headers: nothing is allocated past them.
+/// Limits that protect against absurd headers: nothing is allocated past them. An image takes
+/// 2-3 bytes per pixel here and its occupancy grid 2 more: at the limit, about 2.5 GB.
 struct ImageLimits {
-  int max_side = 200'000;                  ///< pixels per side
-  std::size_t max_pixels = 1'000'000'000;  ///< width * height
+  int max_side = 200'000;  ///< pixels per side
+  /// width * height: a 1 km x 1 km site at 5 cm is 4e8 pixels; a larger map must be cropped or
+  /// given at a coarser resolution.
+  std::size_t max_pixels = 500'000'000;
 };
 
 /// Reads a PGM (P2 or P5, any maxval) or PNG (grey, grey+alpha, RGB, RGBA, palette, 1-16 bit)

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "floorgrid/core/error.hpp"
+#include "floorgrid/geometry/reference_pairs.hpp"
 #include "floorgrid/io/atomic_file.hpp"
 #include "floorgrid/io/yaml_fields.hpp"
 
@@ -30,10 +31,17 @@ const std::vector<std::string> kMapKeys = {"image",           "resolution",  "or
 
 /// Checks the values any map needs, naming the field.
 void validate_metadata(const MapMetadata& m, const std::string& file) {
-  if (!(m.resolution > 0.0) || !std::isfinite(m.resolution)) {
-    throw InputError(
-        fmt::format("must be a positive number of metres per pixel (got {})", m.resolution), file,
-        0, "resolution");
+  if (!(m.resolution >= kMinResolution && m.resolution <= kMaxResolution)) {
+    throw InputError(fmt::format("must be {:g} to {:g} metres per pixel (got {:g})", kMinResolution,
+                                 kMaxResolution, m.resolution),
+                     file, 0, "resolution");
+  }
+  if (!(std::abs(m.origin.x) <= kMaxCoordinate && std::abs(m.origin.y) <= kMaxCoordinate &&
+        std::isfinite(m.origin.theta))) {
+    throw InputError(fmt::format("[{:g}, {:g}, {:g}] is not a physical pose (metres within "
+                                 "{:g} of 0, a finite yaw)",
+                                 m.origin.x, m.origin.y, m.origin.theta, kMaxCoordinate),
+                     file, 0, "origin");
   }
   if (!(m.occupied_thresh >= 0.0 && m.occupied_thresh <= 1.0)) {
     throw InputError(fmt::format("must lie in [0, 1] (got {})", m.occupied_thresh), file, 0,

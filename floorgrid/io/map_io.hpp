@@ -16,7 +16,11 @@ enum class MapMode { trinary, scale, raw };
 /// The mode's name as written in a map YAML.
 std::string to_string(MapMode mode);
 
-/// The fields of a ROS map_server YAML file.
+/// Metres per pixel a map may have: a tenth of a millimetre (a scanned drawing) to 100 m.
+inline constexpr double kMinResolution = 1e-4;
+inline constexpr double kMaxResolution = 100.0;
+
+/// A map YAML's fields (ROS map_server), or the settings given for a bare image.
 struct MapMetadata {
   std::filesystem::path image;      ///< image path as written (relative to the YAML's folder)
   double resolution = 0.05;         ///< metres per pixel

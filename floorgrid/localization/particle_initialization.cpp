@@ -122,7 +122,7 @@ FreeSpaceSampler::FreeSpaceSampler(const OccupancyGrid& grid, const FreeSpaceOpt
   }
   if (cells_.empty())
     throw InputError(near_walls_only ? "no free cell within max_wall_distance of an occupied cell"
-                                     : "the map has no free cell",
+                                     : "the map has no free cell: nowhere to localize",
                      {}, 0, "free_space");
 }
 

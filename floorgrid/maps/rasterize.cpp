@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <string>
 
 #include "floorgrid/core/error.hpp"
@@ -114,10 +115,11 @@ OccupancyGrid rasterize(const VectorFloorplan& plan, const RasterizeOptions& opt
     const double cells_x = std::ceil((box.sizes().x() + 2.0 * options.margin) / options.resolution);
     const double cells_y = std::ceil((box.sizes().y() + 2.0 * options.margin) / options.resolution);
     if (cells_x * cells_y > static_cast<double>(options.max_cells)) {
-      throw InputError("the plan spans " + std::to_string(box.sizes().x()) + " x " +
-                           std::to_string(box.sizes().y()) + " m: at this resolution the grid " +
-                           "would have more than " + std::to_string(options.max_cells) + " cells",
-                       {}, 0, "rasterize.resolution");
+      std::ostringstream message;
+      message << "the plan spans " << box.sizes().x() << " x " << box.sizes().y() << " m: at "
+              << options.resolution << " m per cell its grid would have more than "
+              << options.max_cells << " cells (are its units right?)";
+      throw InputError(message.str(), {}, 0, "rasterize.resolution");
     }
     g.width = std::max(1, static_cast<int>(cells_x));
     g.height = std::max(1, static_cast<int>(cells_y));

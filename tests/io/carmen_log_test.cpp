@@ -392,6 +392,26 @@ TEST(CarmenLogErrorTest, NonNumericRangeNamesIt) {
   EXPECT_NE(std::string(error.what()).find("'abc'"), std::string::npos);
 }
 
+TEST(CarmenLogErrorTest, NanOrHugePosesAreRefusedNamingTheField) {
+  // NaN in a pose was accepted silently and poisoned every filter.
+  TempDir dir;
+  expect_located(read_bad(dir, flaser_of(2, "1") + odom("nan 0 0", "2")), dir / "bad.log", 2, "x");
+  expect_located(read_bad(dir, flaser({"1", "2"}, "0 0 0 0 0 inf", "1")), dir / "bad.log", 1,
+                 "robot_theta");
+  expect_located(read_bad(dir, flaser({"1", "2"}, "0 1e300 0 0 0 0", "1")), dir / "bad.log", 1,
+                 "laser_y");
+}
+
+TEST(CarmenLogErrorTest, ACountOneTooLargeSaysSo) {
+  // "FLASER 3" with two readings: the host name lands where the timestamp should be, which said
+  // "'timestamp': not a number: 'testhost'".
+  TempDir dir;
+  const InputError error = read_bad(dir, "FLASER 3 1.0 2.0 0 0 0 0 0 0 5 testhost 5\n");
+  expect_located(error, dir / "bad.log", 1, "timestamp");
+  EXPECT_NE(std::string(error.what()).find("fewer readings than its count says"), std::string::npos)
+      << error.what();
+}
+
 TEST(CarmenLogErrorTest, NonNumericTimestampNamesIt) {
   TempDir dir;
   expect_located(read_bad(dir, flaser_of(2, "1") + "ODOM 1 2 3 0 0 0 12:30 h 5\n"), dir / "bad.log",

@@ -98,7 +98,8 @@ TEST(DatasetManifest, BadManifestsNameKeyAndLine) {
   check("floorplan: nothere.dxf\ngridmap: grid.yaml\n", {":1:", "'floorplan'", "does not exist"});
   check(base + "floorplan_units: furlong\n", {":3:", "'floorplan_units'", "furlong"});
   check(base + "floorplan_scale: big\n", {":3:", "'floorplan_scale'"});
-  check(base + "floorplan_scale: 0\n", {":3:", "'floorplan_scale'", "> 0"});
+  check(base + "floorplan_scale: 0\n", {":3:", "'floorplan_scale'", "from 0.0001 to 10000"});
+  check(base + "floorplan_scale: 1e300\n", {":3:", "'floorplan_scale'", "(got 1e+300)"});
   check(base + "odometry_noise: [0.1, 0.2]\n", {":3:", "'odometry_noise'", "4 numbers"});
   check(base + "initial_pose:\n  plan: [0, 0, 0]\n", {"'initial_pose.grid'", "missing"});
   check(base + "gridmap_resolution: abc\n", {":3:", "'gridmap_resolution'"});

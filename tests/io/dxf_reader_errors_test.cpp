@@ -168,9 +168,28 @@ TEST(DxfReaderErrors, CoordinatesOverflowingUnderTransformsAreSkippedWithAWarnin
   const io::DxfFloorplan read = io::read_dxf(path, metres());
   ASSERT_EQ(read.plan.segments().size(), 1u);
   EXPECT_TRUE(read.report.extent_m.min().allFinite() && read.report.extent_m.max().allFinite());
-  EXPECT_EQ(read.report.unsupported_skipped.at("LINE (overflow)"), 1u);
+  EXPECT_EQ(read.report.unsupported_skipped.at("LINE (beyond 1e10 units)"), 1u);
   EXPECT_TRUE(std::any_of(read.report.warnings.begin(), read.report.warnings.end(),
-                          [](const std::string& w) { return w.find("overflow") != w.npos; }));
+                          [](const std::string& w) { return w.find("not finite") != w.npos; }));
+}
+
+TEST(DxfReaderErrors, FarOffEntitiesAndNegativeRadiiAreSkippedWithAWarning) {
+  // A LINE at 1e300 gave "inf m of walls"; a CIRCLE of radius -3 was drawn with radius 3.
+  TempDir dir;
+  const auto path = put(dir, dxf_file(kLine + "\n0 LINE\n8 0\n10 1e300\n20 0\n11 1e300\n21 5"
+                                              "\n0 CIRCLE\n8 0\n10 2\n20 2\n40 -3"));
+  const io::DxfFloorplan read = io::read_dxf(path, metres());
+  ASSERT_EQ(read.plan.segments().size(), 1u);
+  EXPECT_TRUE(read.plan.arcs().empty());
+  EXPECT_LT(read.plan.total_length(), 1e3);
+  EXPECT_EQ(read.report.unsupported_skipped.at("LINE (beyond 1e10 units)"), 1u);
+  EXPECT_EQ(read.report.unsupported_skipped.at("CIRCLE (radius <= 0)"), 1u);
+  const auto warned = [&](const std::string& part) {
+    return std::any_of(read.report.warnings.begin(), read.report.warnings.end(),
+                       [&](const std::string& w) { return w.find(part) != w.npos; });
+  };
+  EXPECT_TRUE(warned("beyond 1e10 drawing units"));
+  EXPECT_TRUE(warned("radius -3"));
 }
 
 /// Reads `text`; success and InputError are fine, anything else fails the test.

@@ -242,7 +242,7 @@ TEST(MapIo, BadYamlIsRefusedNamingFileLineAndField) {
   check("bad_res.yaml", yaml("ok.pgm").replace(yaml("ok.pgm").find("0.1"), 3, "abc"),
         {":2:", "'resolution'", "abc"});
   check("neg_res.yaml", yaml("ok.pgm").replace(yaml("ok.pgm").find("0.1"), 3, "-0.1"),
-        {"'resolution'", "positive"});
+        {"'resolution'", "0.0001 to 100 metres per pixel"});
   check("origin2.yaml",
         "image: ok.pgm\nresolution: 0.1\norigin: [0, 0]\noccupied_thresh: 0.65\n"
         "free_thresh: 0.2\n",
@@ -266,7 +266,9 @@ TEST(MapIo, BadImagesAreRefusedWithoutAllocating) {
     expected.push_back(name);
     expect_input_error([&] { read_grey_image(dir / name); }, expected);
   };
-  check("huge.pgm", "P5\n1000000 1000000\n255\n\x01\x02", {"absurd"});
+  check("huge.pgm", "P5\n1000000 1000000\n255\n\x01\x02", {"too large", "coarser resolution"});
+  // 31,000 x 31,000 passes the side limit but not the pixel count (it took 6.4 GB).
+  check("wide.pgm", "P5\n31000 31000\n255\n\x01\x02", {"31000 x 31000", "too large"});
   check("trunc.pgm", pgm(10, 10, std::vector<int>(50, 1)), {"truncated", "100 bytes"});
   check("magic.pgm", "GIF89a....", {"magic"});
   check("maxval.pgm", "P5\n2 2\n0\n\x00\x00\x00\x00", {"maxval"});
