@@ -4,7 +4,11 @@ BUILD_TYPE ?= Release
 JOBS ?= 2
 DEMO_OUT ?= demo-out
 
-.PHONY: all deps configure build demo test bench format clean
+FUZZ_DIR ?= build-fuzz
+FUZZ_SECONDS ?= 60
+SANITIZE_DIR ?= build-sanitize
+
+.PHONY: all deps configure build demo test bench format clean fuzz sanitize
 
 all: build
 
@@ -35,6 +39,21 @@ test: build
 
 bench: build
 	./scripts/run-benchmarks.sh $(BUILD_DIR)
+
+# Every parser fuzzed (libFuzzer, clang-16, ASan + UBSan) for FUZZ_SECONDS each on its seed corpus.
+fuzz: deps
+	cmake -S . -B $(FUZZ_DIR) -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=clang++-16 \
+	  -DFLOORGRID_FUZZ=ON -DFLOORGRID_BUILD_TESTS=OFF -DFLOORGRID_BUILD_BENCH=OFF
+	cmake --build $(FUZZ_DIR) -j $(JOBS)
+	./scripts/run-fuzz.sh $(FUZZ_DIR) $(FUZZ_SECONDS)
+
+# The whole test suite under AddressSanitizer and UndefinedBehaviorSanitizer (GCC).
+sanitize: deps
+	cmake -S . -B $(SANITIZE_DIR) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+	  -DFLOORGRID_SANITIZE=ON -DFLOORGRID_BUILD_BENCH=OFF
+	cmake --build $(SANITIZE_DIR) -j $(JOBS)
+	ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+	  ctest --test-dir $(SANITIZE_DIR) --output-on-failure -j $(JOBS) $(SANITIZE_CTEST_ARGS)
 
 format:
 	@git ls-files '*.cpp' '*.hpp' | xargs clang-format -i

@@ -16,6 +16,8 @@ packages=(
   libopencv-calib3d-dev
   # independent DXF reader used only by tests (never linked)
   python3-ezdxf
+  # make fuzz: libFuzzer from clang-16 (clang-14 cannot compile libstdc++ 12's <ranges>)
+  clang-16 libclang-rt-16-dev
 )
 
 missing=()

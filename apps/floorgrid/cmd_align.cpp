@@ -6,6 +6,7 @@
 
 #include "apps/floorgrid/commands.hpp"
 #include "apps/floorgrid/dataset_run.hpp"
+#include "apps/floorgrid/job_options.hpp"
 #include "apps/floorgrid/progress.hpp"
 #include "apps/floorgrid/summaries.hpp"
 #include "floorgrid/core/error.hpp"
@@ -15,12 +16,10 @@
 
 namespace floorgrid::app {
 
-void run_align(const std::string& dataset, const std::string& out, std::uint64_t seed, int cv) {
-  if (cv == 1)
-    throw InputError("must be 0 or at least 2", {}, 0, "--cv");
+void run_align(const std::string& dataset, const std::string& out, const JobOptions& options) {
   io::prepare_output_folder(out);
   const auto load_start = std::chrono::steady_clock::now();
-  const io::LoadedDataset d = io::load_dataset(dataset);
+  const io::LoadedDataset d = io::load_dataset(dataset, options.raster, options.limits);
   for (const std::string& w : d.warnings)
     spdlog::warn("{}", w);
   io::AlignmentTimings timings;
@@ -39,12 +38,8 @@ void run_align(const std::string& dataset, const std::string& out, std::uint64_t
                                      })
                                    : GroundTruth{},
                                d.manual_pairs ? &*d.manual_pairs : nullptr};
-  AlignmentOptions options;
-  options.localization.seed = seed;
-  options.models.mapping.common.seed = seed;
-  options.models.cv_folds = cv;
   ProgressLine progress;
-  const Alignment a = align(inputs, options, [&](const AlignmentProgress& p) {
+  const Alignment a = align(inputs, options.align, [&](const AlignmentProgress& p) {
     progress.update(p.stage == "fit" ? "fit " + p.detail : p.detail, p.done, p.total);
   });
   progress.finish();
@@ -65,18 +60,13 @@ void add_align_command(CLI::App& root) {
       "align", "The main job: pairs, every model fitted and judged, overlays and metrics");
   struct Args {
     std::string dataset, out;
-    std::uint64_t seed = 1;
-    int cv = 5;
   };
   auto args = std::make_shared<Args>();
+  auto job = std::make_shared<JobArgs>();
   cmd->add_option("DATASET", args->dataset, "dataset.yaml or its folder")->required();
   cmd->add_option("--out", args->out, "output folder (created if needed)")->required();
-  cmd->add_option("--seed", args->seed, "randomness of the filters and the model fits")
-      ->capture_default_str();
-  cmd->add_option("--cv", args->cv, "k of each model's k-fold cross-validation (0: none)")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
-  cmd->callback([args] { run_align(args->dataset, args->out, args->seed, args->cv); });
+  add_job_options(cmd, job, true);
+  cmd->callback([args, job] { run_align(args->dataset, args->out, job_options(*job)); });
 }
 
 }  // namespace floorgrid::app

@@ -2,13 +2,14 @@
 #include <fmt/format.h>
 
 #include "apps/floorgrid/commands.hpp"
+#include "apps/floorgrid/job_options.hpp"
 #include "floorgrid/io/atomic_file.hpp"
 #include "floorgrid/io/simulation_writer.hpp"
 #include "floorgrid/simulation/simulator.hpp"
 
 namespace floorgrid::app {
 
-void run_align(const std::string& dataset, const std::string& out, std::uint64_t seed, int cv);
+void run_align(const std::string& dataset, const std::string& out, const JobOptions& options);
 
 void add_demo_command(CLI::App& root) {
   auto* cmd = root.add_subcommand(
@@ -31,7 +32,9 @@ void add_demo_command(CLI::App& root) {
     const SimulatedDataset d = simulate(args->preset, args->seed);
     io::write_simulated_dataset(d, out / "dataset", true);
     fmt::print("aligning it into {}\n\n", (out / "align").string());
-    run_align((out / "dataset").string(), (out / "align").string(), args->seed, 5);
+    JobArgs job;
+    job.seed = args->seed;
+    run_align((out / "dataset").string(), (out / "align").string(), job_options(job));
     fmt::print(
         "\ndemo: the dataset is in {} (preview.png: the plan's walls through the exact "
         "warp), the results in {} (overlays/ show the plan's walls through each model in "

@@ -6,6 +6,7 @@
 
 #include "apps/floorgrid/commands.hpp"
 #include "apps/floorgrid/dataset_run.hpp"
+#include "apps/floorgrid/job_options.hpp"
 #include "apps/floorgrid/progress.hpp"
 #include "apps/floorgrid/summaries.hpp"
 #include "floorgrid/core/error.hpp"
@@ -19,26 +20,25 @@ void add_pairs_command(CLI::App& root) {
   auto* cmd = root.add_subcommand("pairs", "Reference pairs by dual Monte Carlo localization");
   struct Args {
     std::string dataset, out;
-    std::uint64_t seed = 1;
   };
   auto args = std::make_shared<Args>();
+  auto job = std::make_shared<JobArgs>();
   cmd->add_option("DATASET", args->dataset, "dataset.yaml or its folder")->required();
   cmd->add_option("--out", args->out, "pairs CSV to write (plan_x,plan_y,grid_x,grid_y)")
       ->required();
-  cmd->add_option("--seed", args->seed, "randomness of the particle filters")
-      ->capture_default_str();
-  cmd->callback([args] {
+  add_job_options(cmd, job, false);
+  cmd->callback([args, job] {
+    const JobOptions options = job_options(*job);
     const std::filesystem::path out(args->out);
     io::prepare_output_folder(out.parent_path().empty() ? "." : out.parent_path());
-    const io::LoadedDataset d = io::load_dataset(args->dataset);
+    const io::LoadedDataset d = io::load_dataset(args->dataset, options.raster, options.limits);
     for (const std::string& w : d.warnings)
       spdlog::warn("{}", w);
-    DualLocalizerOptions options;
-    options.seed = args->seed;
     ProgressLine progress;
-    const DualLocalization l = localize_dual(dual_inputs(d), options, [&](const DualProgress& p) {
-      progress.update(p.phase, p.scan, p.scans, p.converged ? "converged" : "not converged");
-    });
+    const DualLocalization l =
+        localize_dual(dual_inputs(d), options.align.localization, [&](const DualProgress& p) {
+          progress.update(p.phase, p.scan, p.scans, p.converged ? "converged" : "not converged");
+        });
     progress.finish();
     require_localized(l.status, d);
     io::write_pairs_csv(l.pairs, out);

@@ -19,5 +19,7 @@ void add_pairs_command(CLI::App& root);
 void add_align_command(CLI::App& root);
 /// `floorgrid demo`.
 void add_demo_command(CLI::App& root);
+/// `floorgrid config`.
+void add_config_command(CLI::App& root);
 
 }  // namespace floorgrid::app

@@ -31,6 +31,8 @@ class OptionVisitor {
   virtual void field(std::string_view name, double& value, const OptionInfo& info) = 0;
   /// An integer.
   virtual void field(std::string_view name, int& value, const OptionInfo& info) = 0;
+  /// A large integer (Eigen::Index).
+  virtual void field(std::string_view name, long& value, const OptionInfo& info) = 0;
   /// A count, a size or a seed (never negative).
   virtual void field(std::string_view name, std::size_t& value, const OptionInfo& info) = 0;
   /// A switch.

@@ -120,7 +120,7 @@ void write_file_atomically(const std::filesystem::path& path, const std::string&
 void prepare_output_folder(const std::filesystem::path& folder) {
   std::error_code ec;
   std::filesystem::create_directories(folder, ec);
-  if (ec || !std::filesystem::is_directory(folder)) {
+  if (ec || !std::filesystem::is_directory(folder, ec)) {
     throw InputError("cannot create the output folder" + (ec ? ": " + ec.message() : std::string()),
                      folder.string());
   }

@@ -22,8 +22,11 @@ std::filesystem::path resolve(const YamlFields& yaml, const std::string& key,
     yaml.fail(key, "the path is empty");
   const std::filesystem::path p(text);
   const std::filesystem::path full = (p.is_absolute() ? p : folder / p).lexically_normal();
-  if (!std::filesystem::exists(full))
-    yaml.fail(key, "file does not exist: " + full.string());
+  // With an error code: a name too long for the file system is bad input, not an exception.
+  std::error_code ec;
+  if (!std::filesystem::exists(full, ec)) {
+    yaml.fail(key, "file does not exist: " + full.string() + (ec ? " (" + ec.message() + ")" : ""));
+  }
   return full;
 }
 
@@ -101,7 +104,7 @@ std::filesystem::path find_manifest(const std::filesystem::path& path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) {
     const auto candidate = path / "dataset.yaml";
-    if (!std::filesystem::exists(candidate)) {
+    if (!std::filesystem::exists(candidate, ec)) {
       throw InputError("folder holds no dataset.yaml", path.string());
     }
     return candidate;

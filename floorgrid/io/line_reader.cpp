@@ -37,8 +37,15 @@ LineReader::LineReader(const std::filesystem::path& path, const LineReaderOption
         std::string("cannot open: ") + (errno != 0 ? std::strerror(errno) : "out of memory"),
         file_);
   }
-  gzbuffer(gz_, 256 * 1024);
-  options_.chunk_bytes = std::clamp<std::size_t>(options_.chunk_bytes, 16, INT_MAX / 2);
+  // Buffers for the file's size: a small file (a fuzzer's input, a test's log) costs little,
+  // a large one reads in chunks of chunk_bytes (a gzip file decompresses to a few times its
+  // size; the buffer grows for a longer line).
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  const std::size_t expected =
+      ec ? options_.chunk_bytes : static_cast<std::size_t>(8 * size + 4096);
+  gzbuffer(gz_, static_cast<unsigned>(std::min<std::size_t>(256 * 1024, expected)));
+  options_.chunk_bytes =
+      std::clamp<std::size_t>(std::min(options_.chunk_bytes, expected), 16, INT_MAX / 2);
   buffer_.resize(options_.chunk_bytes);
   try {
     refill();

@@ -221,8 +221,10 @@ LoadedMap read_map_yaml(const std::filesystem::path& yaml_path) {
     yaml.fail(e.field(), e.message());
   }
   map.image_path = m.image.is_absolute() ? m.image : yaml_path.parent_path() / m.image;
-  if (!std::filesystem::exists(map.image_path)) {
-    yaml.fail("image", "image file does not exist: " + map.image_path.string());
+  std::error_code ec;
+  if (!std::filesystem::exists(map.image_path, ec)) {
+    yaml.fail("image", "image file does not exist: " + map.image_path.string() +
+                           (ec ? " (" + ec.message() + ")" : ""));
   }
   const GreyImage image = read_grey_image(map.image_path);
   map.image_description = image.description;

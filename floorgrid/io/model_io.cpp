@@ -10,8 +10,9 @@ void write_model(const PointMapping& mapping, const std::filesystem::path& path)
   write_file_atomically(path, dump_json(mapping.to_model_file(), 1) + "\n");
 }
 
-std::unique_ptr<PointMapping> read_model(const std::filesystem::path& path) {
-  return load_mapping(parse_json(read_whole_file(path), path.string()), path.string());
+std::unique_ptr<PointMapping> read_model(const std::filesystem::path& path,
+                                         const MappingOptions& options) {
+  return load_mapping(parse_json(read_whole_file(path), path.string()), path.string(), options);
 }
 
 }  // namespace floorgrid::io

@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <memory>
 
+#include "floorgrid/mapping/mapping_factory.hpp"
 #include "floorgrid/mapping/point_mapping.hpp"
 
 namespace floorgrid::io {
@@ -12,6 +13,9 @@ void write_model(const PointMapping& mapping, const std::filesystem::path& path)
 
 /// Reads a model file; InputError naming the file and the field for a file that is not JSON,
 /// not a floorgrid model, of another version, of an unknown model, or malformed.
-std::unique_ptr<PointMapping> read_model(const std::filesystem::path& path);
+/// `options`: the models' settings the file does not hold, and limits on what loading may
+/// derive (see load_mapping).
+std::unique_ptr<PointMapping> read_model(const std::filesystem::path& path,
+                                         const MappingOptions& options = {});
 
 }  // namespace floorgrid::io

@@ -63,6 +63,9 @@ class YamlPrinter final : public OptionVisitor {
   void field(std::string_view name, int& value, const OptionInfo& info) override {
     line(name, std::to_string(value), info);
   }
+  void field(std::string_view name, long& value, const OptionInfo& info) override {
+    line(name, std::to_string(value), info);
+  }
   void field(std::string_view name, std::size_t& value, const OptionInfo& info) override {
     line(name, std::to_string(value), info);
   }
@@ -113,6 +116,9 @@ class JsonPrinter final : public OptionVisitor {
          info);
   }
   void field(std::string_view name, int& value, const OptionInfo& info) override {
+    leaf(name, value, info);
+  }
+  void field(std::string_view name, long& value, const OptionInfo& info) override {
     leaf(name, value, info);
   }
   void field(std::string_view name, std::size_t& value, const OptionInfo& info) override {
@@ -172,6 +178,10 @@ class YamlReader final : public OptionVisitor {
         fail(*node, name, "is out of range for an integer (got " + node->Scalar() + ")");
       value = static_cast<int>(v);
     }
+  }
+  void field(std::string_view name, long& value, const OptionInfo&) override {
+    if (const auto node = scalar(name, "an integer"))
+      value = static_cast<long>(integer(*node, name));
   }
   void field(std::string_view name, std::size_t& value, const OptionInfo&) override {
     if (const auto node = scalar(name, "a whole number >= 0")) {

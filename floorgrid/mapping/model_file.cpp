@@ -279,6 +279,11 @@ void PointMapping::from_model_file(const Value& file, const std::string& where) 
 }
 
 std::unique_ptr<PointMapping> load_mapping(const Value& file, const std::string& where) {
+  return load_mapping(file, where, MappingOptions{});
+}
+
+std::unique_ptr<PointMapping> load_mapping(const Value& file, const std::string& where,
+                                           const MappingOptions& base) {
   const Value* format = file.find("format");
   if (!file.is_object() || format == nullptr || !format->is_string() ||
       format->as_string() != kModelFormat) {
@@ -301,7 +306,7 @@ std::unique_ptr<PointMapping> load_mapping(const Value& file, const std::string&
       from->as_string() != "plan" || to->as_string() != "grid" || units->as_string() != "m") {
     throw InputError("expected frames plan -> grid in metres", where, 0, "frames");
   }
-  MappingOptions options;
+  MappingOptions options = base;
   options.model = text(member(file, "model", where), where, "model");
   std::unique_ptr<PointMapping> mapping;
   try {

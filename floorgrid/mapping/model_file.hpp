@@ -6,6 +6,7 @@
 #include <string>
 
 #include "floorgrid/core/value.hpp"
+#include "floorgrid/mapping/mapping_factory.hpp"
 #include "floorgrid/mapping/point_mapping.hpp"
 
 namespace floorgrid {
@@ -19,6 +20,11 @@ inline constexpr int kModelVersion = 1;
 /// passed around and edited): every field is checked for its type, range and finiteness, and
 /// sizes against each other, so that no file can make a model crash, hang or allocate without
 /// bound. InputError naming `where` (the file) and the field otherwise.
+/// `options` are the models' settings the file does not hold (the file's own win), and limits
+/// on what loading may derive (options.gp.prediction.lattice.max_nodes caps a GP's lattice).
+std::unique_ptr<PointMapping> load_mapping(const Value& model_file, const std::string& where,
+                                           const MappingOptions& options);
+/// load_mapping with the default options.
 std::unique_ptr<PointMapping> load_mapping(const Value& model_file, const std::string& where);
 
 /// Readers and writers of model parameters, each reader throwing InputError naming `where` and

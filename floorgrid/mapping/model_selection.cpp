@@ -180,7 +180,7 @@ void AutoMapping::load_parameters(const Value& j, const std::string& where) {
   const Value* name = model.find("model");
   if (name != nullptr && name->is_string() && name->as_string() == "auto")
     throw InputError("auto cannot choose auto", where, 0, "parameters.model.model");
-  chosen_ = load_mapping(model, where);
+  chosen_ = load_mapping(model, where, *options_);
   table_.clear();
   if (const Value* table = optional_member(j, "cv_mean_error_m"); table && table->is_object()) {
     for (const auto& [candidate, error] : table->members()) {

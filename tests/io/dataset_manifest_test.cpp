@@ -91,6 +91,9 @@ TEST(DatasetManifest, BadManifestsNameKeyAndLine) {
     expect_input_error([&] { read_manifest(folder.write(text)); }, expected);
   };
   check(base + "colour: red\n", {":3:", "'colour'", "unknown key"});
+  // A path too long for the file system threw std::filesystem_error (found by fuzzing).
+  check("floorplan: " + std::string(5000, 'v') + "\ngridmap: grid.yaml\n",
+        {":1:", "'floorplan'", "does not exist"});
   check(base + "laser: {max_range: 30, beams: 3}\n", {":3:", "'laser.beams'"});
   check(base + "laser: {max_range: -1}\n", {":3:", "'laser.max_range'"});
   check(base + "truth:\n  map: x\n", {":4:", "'truth.map'"});

@@ -9,6 +9,7 @@
 
 #include "tests/support/expect_error.hpp"
 #include "tests/support/field_count.hpp"
+#include "tests/support/option_counter.hpp"
 #include "tests/support/test_data.hpp"
 
 namespace floorgrid {
@@ -53,32 +54,6 @@ void visit(OptionVisitor& v, ToyOptions& o) {
   v.group("inner", "the inner part", [&] { visit(v, o.inner); });
 }
 
-/// Counts the fields and groups a visit names at its top level.
-class TopLevelCounter final : public OptionVisitor {
- public:
-  std::size_t count = 0;
-  void field(std::string_view, double&, const OptionInfo&) override { count += depth_ == 0; }
-  void field(std::string_view, int&, const OptionInfo&) override { count += depth_ == 0; }
-  void field(std::string_view, std::size_t&, const OptionInfo&) override { count += depth_ == 0; }
-  void field(std::string_view, bool&, const OptionInfo&) override { count += depth_ == 0; }
-  void field(std::string_view, std::string&, const OptionInfo&) override { count += depth_ == 0; }
-  void field(std::string_view, std::optional<double>&, const OptionInfo&) override {
-    count += depth_ == 0;
-  }
-  void field(std::string_view, std::vector<std::string>&, const OptionInfo&) override {
-    count += depth_ == 0;
-  }
-  void group(std::string_view, std::string_view, const std::function<void()>& members) override {
-    count += depth_ == 0;
-    ++depth_;
-    members();
-    --depth_;
-  }
-
- private:
-  int depth_ = 0;
-};
-
 io::OptionTree tree_of(ToyOptions& options) {
   return [&options](OptionVisitor& v) { v.group("toy", "a toy", [&] { visit(v, options); }); };
 }
@@ -87,7 +62,7 @@ TEST(OptionsFile, FieldCountSeesEveryField) {
   EXPECT_EQ(test::field_count<InnerOptions>(), 2u);
   EXPECT_EQ(test::field_count<ToyOptions>(), 9u);
   ToyOptions toy;
-  TopLevelCounter counter;
+  test::TopLevelCounter counter;
   visit(counter, toy);
   EXPECT_EQ(counter.count, test::field_count<ToyOptions>());
 }

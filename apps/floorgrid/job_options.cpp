@@ -1,0 +1,41 @@
+#include "apps/floorgrid/job_options.hpp"
+
+#include "floorgrid/core/error.hpp"
+
+namespace floorgrid::app {
+
+void add_job_options(CLI::App* cmd, const std::shared_ptr<JobArgs>& args, bool with_cv) {
+  cmd->add_option("--config", args->config,
+                  "options file: YAML as `floorgrid config --dump` prints it (keys left out keep "
+                  "their defaults)");
+  cmd->add_option("--seed", args->seed, "randomness of the filters and the model fits (default 1)");
+  cmd->add_option("--memory-limit", args->memory_gb,
+                  "GiB the maps may take (default: half of this machine's memory)");
+  if (with_cv) {
+    cmd->add_option("--cv", args->cv, "k of each model's k-fold cross-validation (0: none)")
+        ->check(CLI::NonNegativeNumber);
+  }
+}
+
+JobOptions job_options(const JobArgs& args) {
+  JobOptions options;
+  if (!args.config.empty())
+    io::read_options_yaml(args.config, io::job_option_tree(options));
+  if (args.seed) {
+    options.align.localization.seed = *args.seed;
+    options.align.models.mapping.common.seed = *args.seed;
+  }
+  if (args.cv) {
+    if (*args.cv == 1)
+      throw InputError("must be 0 or at least 2", {}, 0, "--cv");
+    options.align.models.cv_folds = *args.cv;
+  }
+  if (args.memory_gb) {
+    if (!(*args.memory_gb > 0.0 && *args.memory_gb < 1e6))
+      throw InputError("must be a positive number of GiB", {}, 0, "--memory-limit");
+    options.limits.memory_gb = *args.memory_gb;
+  }
+  return options;
+}
+
+}  // namespace floorgrid::app

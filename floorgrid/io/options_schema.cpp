@@ -1,0 +1,884 @@
+#include "floorgrid/io/options_schema.hpp"
+
+namespace floorgrid {
+
+// Generated from the structs' /// comments, then edited: each field's name is the struct's, its
+// unit and one line of what it does; defaults are never repeated here.
+
+void visit(OptionVisitor& v, GpLatticeOptions& o) {
+  v.field("enabled", o.enabled,
+          {.unit = "",
+           .doc = "Interpolate the mean from a lattice (false: the exact formula everywhere)",
+           .choices = {}});
+  v.field(
+      "tolerance", o.tolerance,
+      {.unit = "m", .doc = "The largest acceptable |lattice - exact| of the mean", .choices = {}});
+  v.field("initial_spacing", o.initial_spacing,
+          {.unit = "length scales", .doc = "First lattice spacing per axis", .choices = {}});
+  v.field("margin", o.margin,
+          {.unit = "",
+           .doc = "Length scales the lattice reaches beyond the training points",
+           .choices = {}});
+  v.field("max_nodes", o.max_nodes,
+          {.unit = "",
+           .doc = "Give up (exact formula everywhere) rather than use more nodes (64 bytes each)",
+           .choices = {}});
+  v.field("max_attempts", o.max_attempts,
+          {.unit = "", .doc = "Refinements at most before giving up", .choices = {}});
+}
+
+void visit(OptionVisitor& v, RpropOptions& o) {
+  v.field(
+      "initial_step", o.initial_step,
+      {.unit = "", .doc = "First step of every parameter, parameter units, > 0", .choices = {}});
+  v.field("increase", o.increase,
+          {.unit = "",
+           .doc = "eta+: step factor while the gradient keeps its sign (> 1)",
+           .choices = {}});
+  v.field("decrease", o.decrease,
+          {.unit = "", .doc = "eta-: step factor after a sign change, in (0, 1)", .choices = {}});
+  v.field("min_step", o.min_step,
+          {.unit = "", .doc = "Smallest step, parameter units, > 0", .choices = {}});
+  v.field("max_step", o.max_step,
+          {.unit = "", .doc = "Largest step, parameter units, >= min_step", .choices = {}});
+  v.field("max_iterations", o.max_iterations,
+          {.unit = "", .doc = "Objective evaluations at most, >= 1", .choices = {}});
+  v.field(
+      "tolerance", o.tolerance,
+      {.unit = "", .doc = "Converged when the objective changes by less than this", .choices = {}});
+  // lower and upper are not options: the tuning sets them from its own bounds.
+}
+
+void visit(OptionVisitor& v, CrossValidationOptions& o) {
+  v.field("folds", o.folds, {.unit = "", .doc = "k of k-fold, >= 2", .choices = {}});
+  v.field("max_pairs", o.max_pairs,
+          {.unit = "",
+           .doc = "Pairs binned down to this before the folds (cost bound)",
+           .choices = {}});
+}
+
+void visit(OptionVisitor& v, ThinPlateSplineLatticeOptions& o) {
+  v.field("spacing", o.spacing, {.unit = "m", .doc = "Between lattice nodes", .choices = {}});
+  v.field("margin", o.margin,
+          {.unit = "m", .doc = "Added around the box on every side", .choices = {}});
+  v.field("threads", o.threads,
+          {.unit = "", .doc = "Threads building the nodes (1 or 2)", .choices = {}});
+}
+
+void visit(OptionVisitor& v, GpPredictionOptions& o) {
+  v.group("lattice", "The mean's lattice (fast, within lattice.tolerance metres)",
+          [&] { visit(v, o.lattice); });
+  v.field("threads", o.threads,
+          {.unit = "", .doc = "Threads for batches and the lattice, 1 or 2", .choices = {}});
+}
+
+void visit(OptionVisitor& v, GpTuningOptions& o) {
+  v.field("max_points", o.max_points,
+          {.unit = "",
+           .doc = "Tune on at most this many points (a farthest-point subsample)",
+           .choices = {}});
+  v.field(
+      "min_noise_std", o.min_noise_std,
+      {.unit = "m",
+       .doc = "The smallest noise std allowed (sn^2 on K's diagonal bounds its condition number)",
+       .choices = {}});
+  v.field(
+      "min_length_scale_factor", o.min_length_scale_factor,
+      {.unit = "",
+       .doc = "Smallest length scale, in median nearest-neighbour distances of the tuning points",
+       .choices = {}});
+  v.field("max_length_scale_factor", o.max_length_scale_factor,
+          {.unit = "",
+           .doc = "Largest length scale, in extents of the training points",
+           .choices = {}});
+  v.field("max_signal_std_factor", o.max_signal_std_factor,
+          {.unit = "",
+           .doc = "Largest signal std, in RMS of the outputs about their mean",
+           .choices = {}});
+  v.group("rprop", "The optimizer", [&] { visit(v, o.rprop); });
+}
+
+void visit(OptionVisitor& v, ReductionOptions& o) {
+  v.field("budget", o.budget,
+          {.unit = "", .doc = "At most this many pairs after reduction, >= 3", .choices = {}});
+}
+
+void visit(OptionVisitor& v, ScanMatchOptions& o) {
+  v.field("max_iterations", o.max_iterations,
+          {.unit = "", .doc = "Gauss-Newton iterations at most (>= 1)", .choices = {}});
+  v.field("max_correspondence", o.max_correspondence,
+          {.unit = "m", .doc = "Correspondences farther than this are ignored", .choices = {}});
+  v.field("min_correspondence", o.min_correspondence,
+          {.unit = "m",
+           .doc = "Smallest correspondence gate (the gate shrinks to it, <= max_correspondence)",
+           .choices = {}});
+  v.field("robust_scale", o.robust_scale,
+          {.unit = "m",
+           .doc = "Scale of the Geman-McClure weight (c^2 / (c^2 + r^2))^2",
+           .choices = {}});
+  v.field("inlier_distance", o.inlier_distance,
+          {.unit = "m", .doc = "A residual this small is an inlier", .choices = {}});
+  v.field(
+      "min_inliers", o.min_inliers,
+      {.unit = "", .doc = "Accept a match only with at least this many inliers", .choices = {}});
+  v.field("min_inlier_fraction", o.min_inlier_fraction,
+          {.unit = "",
+           .doc = "Accept a match only when its inliers are at least this share of the endpoints",
+           .choices = {}});
+  v.field("min_constraint", o.min_constraint,
+          {.unit = "",
+           .doc = "Least share of the inliers' wall normals along the weakest direction (0 to 0.5)",
+           .choices = {}});
+  v.field("max_correction", o.max_correction,
+          {.unit = "m", .doc = "A match moving the pose farther fails", .choices = {}});
+  v.field("max_heading_correction", o.max_heading_correction,
+          {.unit = "rad", .doc = "Likewise for the heading", .choices = {}});
+  v.field("tolerance", o.tolerance,
+          {.unit = "rad",
+           .doc = "Stop when a step moves less than this (metres and radians)",
+           .choices = {}});
+}
+
+void visit(OptionVisitor& v, RecoveryOptions& o) {
+  v.field("enabled", o.enabled,
+          {.unit = "", .doc = "Detect divergence and recover (false: never)", .choices = {}});
+  v.field("min_beam_likelihood", o.min_beam_likelihood,
+          {.unit = "",
+           .doc = "A scan is bad when the mean beam likelihood is below this",
+           .choices = {}});
+  v.field("max_bad_scans", o.max_bad_scans,
+          {.unit = "",
+           .doc = "This many consecutive bad scans while tracking mean diverged (>= 1)",
+           .choices = {}});
+  v.field("max_position_std", o.max_position_std,
+          {.unit = "m",
+           .doc = "After having converged, a position spread above this means diverged (the cloud "
+                  "has exploded)",
+           .choices = {}});
+  v.field("min_fast_slow_ratio", o.min_fast_slow_ratio,
+          {.unit = "",
+           .doc = "After converging, w_fast / w_slow below this means diverged (0: off)",
+           .choices = {}});
+  v.field("alpha_slow", o.alpha_slow,
+          {.unit = "",
+           .doc = "Per-scan smoothing of the long-term likelihood w_slow (augmented MCL)",
+           .choices = {}});
+  v.field("alpha_fast", o.alpha_fast,
+          {.unit = "",
+           .doc = "Per-scan smoothing of the short-term average likelihood w_fast, in (0, 1], > "
+                  "alpha_slow",
+           .choices = {}});
+  v.field(
+      "max_augmented_fraction", o.max_augmented_fraction,
+      {.unit = "",
+       .doc = "While tracking, inject global particles up to this share (augmented MCL, 0: off)",
+       .choices = {}});
+  v.field("recovery_fraction", o.recovery_fraction,
+          {.unit = "",
+           .doc = "Share of the particles replaced on every recovering scan, in (0, 1]",
+           .choices = {}});
+  v.field("global_share", o.global_share,
+          {.unit = "",
+           .doc = "Share of the replaced particles drawn over the whole free space",
+           .choices = {}});
+  v.field("initial_radius", o.initial_radius,
+          {.unit = "m",
+           .doc = "Radius of the disc around the anchor when the anchor is set (> 0)",
+           .choices = {}});
+  v.field(
+      "initial_heading_spread", o.initial_heading_spread,
+      {.unit = "rad",
+       .doc =
+           "Heading spread (uniform +-) around the anchor's heading when the anchor is set (> 0)",
+       .choices = {}});
+  v.field("radius_growth", o.radius_growth,
+          {.unit = "",
+           .doc = "Growth of the recovery radius and heading spread per fruitless scan",
+           .choices = {}});
+  v.field("max_radius", o.max_radius,
+          {.unit = "m", .doc = "The radius stops growing here (>= initial_radius)", .choices = {}});
+  v.field("max_recovery_scans", o.max_recovery_scans,
+          {.unit = "",
+           .doc = "Recovering scans after which a filter that knows its free space restarts global "
+                  "localization (>= 1)",
+           .choices = {}});
+}
+
+void visit(OptionVisitor& v, ConvergenceOptions& o) {
+  v.field("max_position_std", o.max_position_std,
+          {.unit = "m", .doc = "PoseEstimate::position_std at most this", .choices = {}});
+  v.field("max_heading_std", o.max_heading_std,
+          {.unit = "rad", .doc = "PoseEstimate::heading_std at most this", .choices = {}});
+  v.field("max_scale_std", o.max_scale_std,
+          {.unit = "", .doc = "PoseEstimate::scale_std at most this", .choices = {}});
+  v.field("min_ess_ratio", o.min_ess_ratio,
+          {.unit = "", .doc = "N_eff / N at least this, in [0, 1]", .choices = {}});
+  v.field("min_beam_likelihood", o.min_beam_likelihood,
+          {.unit = "",
+           .doc = "Mean beam likelihood at the mean pose and scale at least this, in [0, 1]",
+           .choices = {}});
+  v.field(
+      "min_converged_scans", o.min_converged_scans,
+      {.unit = "",
+       .doc =
+           "Consecutive scans meeting every criterion before the filter counts as converged (>= 1)",
+       .choices = {}});
+  v.field("max_failed_scans", o.max_failed_scans,
+          {.unit = "",
+           .doc = "Consecutive failing scans before a converged filter is no longer converged",
+           .choices = {}});
+}
+
+void visit(OptionVisitor& v, HypothesisSeedingOptions& o) {
+  v.field(
+      "position_step", o.position_step,
+      {.unit = "m", .doc = "Step of the lattice of positions over the free space", .choices = {}});
+  v.field("headings", o.headings,
+          {.unit = "", .doc = "Headings per lattice position, evenly spaced", .choices = {}});
+  v.field("scales", o.scales,
+          {.unit = "", .doc = "Scales per lattice position, over the scale range", .choices = {}});
+  v.field("keep", o.keep, {.unit = "", .doc = "Best hypotheses kept as particles", .choices = {}});
+  v.field("max_hypotheses", o.max_hypotheses,
+          {.unit = "", .doc = "Hypotheses scored at most (>= 1)", .choices = {}});
+  v.field(
+      "batch", o.batch,
+      {.unit = "", .doc = "Hypotheses per observation-model call (bounds memory)", .choices = {}});
+  v.field("jitter", o.jitter,
+          {.unit = "", .doc = "Spread each kept hypothesis over its lattice cell", .choices = {}});
+}
+
+void visit(OptionVisitor& v, FreeSpaceOptions& o) {
+  v.field("max_wall_distance", o.max_wall_distance,
+          {.unit = "m",
+           .doc = "Global sampling keeps free cells this close to a wall (0: every free cell)",
+           .choices = {}});
+}
+
+void visit(OptionVisitor& v, MotionNoise& o) {
+  v.field("alpha1", o.alpha1,
+          {.unit = "", .doc = "Rotation noise from rotation (rad^2/rad^2)", .choices = {}});
+  v.field("alpha2", o.alpha2,
+          {.unit = "", .doc = "Rotation noise from translation (rad^2/m^2)", .choices = {}});
+  v.field("alpha3", o.alpha3,
+          {.unit = "", .doc = "Translation noise from translation (m^2/m^2)", .choices = {}});
+  v.field("alpha4", o.alpha4,
+          {.unit = "", .doc = "Translation noise from rotation (m^2/rad^2)", .choices = {}});
+}
+
+void visit(OptionVisitor& v, AutoOptions& o) {
+  v.field("candidates", o.candidates,
+          {.unit = "",
+           .doc = "The models compared, cheapest first (ties go to the earlier one)",
+           .choices = {}});
+  v.group("cv", "How they are compared", [&] { visit(v, o.cv); });
+}
+
+void visit(OptionVisitor& v, ThinPlateSplineModelOptions& o) {
+  v.field("regularization", o.regularization,
+          {.unit = "m^2",
+           .doc = "Regularization weight lambda (null: chosen by cross-validation)",
+           .choices = {}});
+  v.field("tuning_pairs", o.tuning_pairs,
+          {.unit = "", .doc = "Subsample size of the lambda choice", .choices = {}});
+  v.group("lattice", "For mapping many points at once", [&] { visit(v, o.lattice); });
+  v.field("lattice_from", o.lattice_from,
+          {.unit = "", .doc = "Batches at least this large use the lattice", .choices = {}});
+}
+
+void visit(OptionVisitor& v, GaussianProcessOptions& o) {
+  // hyperparameters are not options: fitted models tune them (fit them by hand in code).
+  v.group("tuning", "Subsample, bounds and RPROP settings of the tuning",
+          [&] { visit(v, o.tuning); });
+  v.group("prediction", "Lattice and threads of the fitted model", [&] { visit(v, o.prediction); });
+  v.field("max_points", o.max_points,
+          {.unit = "",
+           .doc = "Refuse more training points than this (K takes 8 N^2 bytes and N^3 / 3 flops)",
+           .choices = {}});
+}
+
+void visit(OptionVisitor& v, LocalTransformsOptions& o) {
+  enum_field(v, "kind", o.kind,
+             {{"similarity", TransformKind::similarity},
+              {"rigid", TransformKind::rigid},
+              {"affine", TransformKind::affine}},
+             "The family of each local transform");
+  v.field("cell_size", o.cell_size,
+          {.unit = "m", .doc = "Finest clustering cells (0: the extent / 12)", .choices = {}});
+  v.field("levels", o.levels,
+          {.unit = "",
+           .doc = "Coarser levels (cells doubled each) over which clusters merge",
+           .choices = {}});
+  v.field(
+      "agreement", o.agreement,
+      {.unit = "m", .doc = "A pair agrees with a transform within this distance", .choices = {}});
+  v.field("min_cluster_pairs", o.min_cluster_pairs,
+          {.unit = "", .doc = "Smaller clusters are dropped", .choices = {}});
+  v.field("hypotheses", o.hypotheses,
+          {.unit = "", .doc = "Seeded minimal samples tried per cluster in a cell", .choices = {}});
+  v.field("weight_power", o.weight_power,
+          {.unit = "",
+           .doc = "Blend weights w_k = 1 / d^power of the distance to each cluster",
+           .choices = {}});
+  v.field("budget", o.budget,
+          {.unit = "",
+           .doc = "Pairs kept (spatial binning, the pairs of a cell averaged) before clustering",
+           .choices = {}});
+}
+
+void visit(OptionVisitor& v, LinearCombinationOptions& o) {
+  v.field("neighbours", o.neighbours,
+          {.unit = "",
+           .doc = "Nearest plan points searched for a triangle (first round)",
+           .choices = {}});
+  v.field("min_angle_deg", o.min_angle_deg,
+          {.unit = "deg", .doc = "Smallest angle a usable triangle may have", .choices = {}});
+  v.field("budget", o.budget,
+          {.unit = "", .doc = "Pairs kept after spatial binning", .choices = {}});
+}
+
+void visit(OptionVisitor& v, RansacOptions& o) {
+  enum_field(v, "kind", o.kind,
+             {{"similarity", TransformKind::similarity},
+              {"rigid", TransformKind::rigid},
+              {"affine", TransformKind::affine}},
+             "The family fitted");
+  enum_field(v, "reflection", o.reflection,
+             {{"forbid", Reflection::forbid},
+              {"allow", Reflection::allow},
+              {"require", Reflection::require}},
+             "Similarity and rigid");
+  v.field("inlier_threshold", o.inlier_threshold,
+          {.unit = "m", .doc = "A pair is an inlier when |T p - q| <= this", .choices = {}});
+  v.field(
+      "confidence", o.confidence,
+      {.unit = "", .doc = "Wanted probability of one all-inlier sample, in (0, 1)", .choices = {}});
+  v.field("max_iterations", o.max_iterations,
+          {.unit = "", .doc = "Minimal samples drawn at most", .choices = {}});
+  v.field("min_iterations", o.min_iterations,
+          {.unit = "", .doc = "Minimal samples drawn at least", .choices = {}});
+  v.field("seed", o.seed, {.unit = "", .doc = "Same seed, same result", .choices = {}});
+  v.field("preemptive_subset", o.preemptive_subset,
+          {.unit = "",
+           .doc = "Pairs (a fixed random subset) on which every hypothesis is scored",
+           .choices = {}});
+  v.field("verify_count", o.verify_count,
+          {.unit = "",
+           .doc = "Best hypotheses on that subset re-scored on the verification subset",
+           .choices = {}});
+  v.field("verify_subset", o.verify_subset,
+          {.unit = "",
+           .doc = "Pairs on which the best hypotheses are re-scored and refitted",
+           .choices = {}});
+  v.field(
+      "max_refit_passes", o.max_refit_passes,
+      {.unit = "", .doc = "Passes over all pairs (classify, then refit) at most", .choices = {}});
+  v.field("min_sample_separation", o.min_sample_separation,
+          {.unit = "",
+           .doc = "Minimal samples closer than this share of the extent are rejected",
+           .choices = {}});
+  v.field("threads", o.threads,
+          {.unit = "", .doc = "Threads of the passes over all pairs", .choices = {}});
+}
+
+void visit(OptionVisitor& v, MappingCommonOptions& o) {
+  v.field("extrapolation_distance", o.extrapolation_distance,
+          {.unit = "m",
+           .doc = "A point farther than this from every pair is flagged extrapolated",
+           .choices = {}});
+  v.group("reduction", "Pair budget of models that reduce their pairs",
+          [&] { visit(v, o.reduction); });
+  v.field("support_budget", o.support_budget,
+          {.unit = "", .doc = "Pairs kept for confidence, hull and inverse start", .choices = {}});
+  v.field("inverse_tolerance", o.inverse_tolerance,
+          {.unit = "", .doc = "Newton inverse: residual relative to the extent", .choices = {}});
+  v.field("inverse_max_iterations", o.inverse_max_iterations,
+          {.unit = "", .doc = "Newton inverse: steps at most", .choices = {}});
+  v.field("seed", o.seed,
+          {.unit = "", .doc = "Randomness of the fit (RANSAC, subsampling)", .choices = {}});
+}
+
+void visit(OptionVisitor& v, ScaleRange& o) {
+  v.field("min", o.min, {.unit = "", .doc = "Smallest scale, > 0", .choices = {}});
+  v.field("max", o.max, {.unit = "", .doc = "Largest scale, >= min", .choices = {}});
+}
+
+void visit(OptionVisitor& v, PlanRegistrationOptions& o) {
+  v.group("seeding", "The lattice", [&] { visit(v, o.seeding); });
+  v.field("coarse_points", o.coarse_points,
+          {.unit = "",
+           .doc = "The lattice is scored with this many of the submap's points (evenly thinned)",
+           .choices = {}});
+  v.field("runner_up_distance", o.runner_up_distance,
+          {.unit = "m",
+           .doc = "The runner-up is the best hypothesis this far from the best...",
+           .choices = {}});
+  v.field("runner_up_heading", o.runner_up_heading,
+          {.unit = "rad", .doc = "... or turned this much", .choices = {}});
+  v.field("min_scale", o.min_scale,
+          {.unit = "", .doc = "Refined scales are kept above this", .choices = {}});
+  v.field("seed", o.seed,
+          {.unit = "", .doc = "Randomness of the lattice's seeding", .choices = {}});
+}
+
+void visit(OptionVisitor& v, SubmapOptions& o) {
+  v.field("bin", o.bin,
+          {.unit = "m", .doc = "One point per bin of this size (> 0)", .choices = {}});
+  v.field("max_points", o.max_points,
+          {.unit = "", .doc = "At most this many points, evenly thinned (>= 1)", .choices = {}});
+  v.field("max_range", o.max_range,
+          {.unit = "m", .doc = "Longer readings are left out", .choices = {}});
+}
+
+void visit(OptionVisitor& v, VisibleWallsOptions& o) {
+  v.field("gap_closing", o.gap_closing,
+          {.unit = "m",
+           .doc = "Door-sized gaps (up to twice this) are closed while the outside is flooded",
+           .choices = {}});
+  v.field("min_clearance", o.min_clearance,
+          {.unit = "m",
+           .doc = "Free space is a room when some cell of it is this far from every wall",
+           .choices = {}});
+  v.field("reach", o.reach,
+          {.unit = "m",
+           .doc = "A wall cell is visible when free room space lies within this distance",
+           .choices = {}});
+}
+
+void visit(OptionVisitor& v, FilterRunnerOptions& o) {
+  v.field(
+      "update_min_translation", o.update_min_translation,
+      {.unit = "m", .doc = "Odometry travel before the filter is updated again", .choices = {}});
+  v.field(
+      "update_min_rotation", o.update_min_rotation,
+      {.unit = "rad", .doc = "Turn of odometry before the filter is updated again", .choices = {}});
+  v.field("improved_proposal", o.improved_proposal,
+          {.unit = "",
+           .doc = "Improved proposal while tracking (Grisetti, Stachniss, Burgard 2007)",
+           .choices = {}});
+  v.field("refine", o.refine,
+          {.unit = "",
+           .doc = "Match each scan of a converged filter onto the walls from its mean pose (the "
+                  "refined pose pairs are made from)",
+           .choices = {}});
+  v.group("match", "Both uses of scan matching", [&] { visit(v, o.match); });
+  v.field("beam_tolerance", o.beam_tolerance,
+          {.unit = "m",
+           .doc = "Beams are matched when they reach the first wall along them within this",
+           .choices = {}});
+  v.group("match_observation", "Beams per scan of the matching",
+          [&] { visit(v, o.match_observation); });
+  v.field("threads", o.threads,
+          {.unit = "", .doc = "Threads of the observation model", .choices = {}});
+}
+
+void visit(OptionVisitor& v, ObservationOptions& o) {
+  v.field("max_beams", o.max_beams,
+          {.unit = "",
+           .doc = "Keep at most this many returns, evenly spread over the scan",
+           .choices = {}});
+}
+
+void visit(OptionVisitor& v, LikelihoodFieldOptions& o) {
+  v.field("sigma_hit", o.sigma_hit,
+          {.unit = "m", .doc = "Spread of an endpoint about the wall it hit", .choices = {}});
+  v.field("z_hit", o.z_hit,
+          {.unit = "", .doc = "Weight of the Gaussian part, >= 0", .choices = {}});
+  v.field("z_rand", o.z_rand,
+          {.unit = "",
+           .doc = "Likelihood of an endpoint far from every wall (the floor)",
+           .choices = {}});
+  v.field("max_distance", o.max_distance,
+          {.unit = "m", .doc = "The distance field is capped here", .choices = {}});
+  v.field("beam_weight", o.beam_weight,
+          {.unit = "",
+           .doc = "Temperature: the scan's log-likelihood times this (< 1 against overconfidence)",
+           .choices = {}});
+  v.field("unknown_is_free", o.unknown_is_free,
+          {.unit = "",
+           .doc = "Endpoints in unknown cells score by their distance to a wall like free ones",
+           .choices = {}});
+  v.field("known_margin", o.known_margin,
+          {.unit = "m",
+           .doc = "Endpoints farther than this from every observed cell say nothing",
+           .choices = {}});
+  v.field("min_known_share", o.min_known_share,
+          {.unit = "",
+           .doc = "A scan says nothing when fewer than this share of its endpoints are known",
+           .choices = {}});
+}
+
+void visit(OptionVisitor& v, ParticleFilterOptions& o) {
+  v.group("motion", "Odometry noise alpha1..alpha4 (world metres and radians)",
+          [&] { visit(v, o.motion); });
+  v.field(
+      "scale_walk", o.scale_walk,
+      {.unit = "",
+       .doc = "Random walk of the particles' scales, per square root of a world metre travelled",
+       .choices = {}});
+  v.field("tracking_particles", o.tracking_particles,
+          {.unit = "", .doc = "Particles while tracking (>= 1)", .choices = {}});
+  v.field("global_particles", o.global_particles,
+          {.unit = "", .doc = "Particles of global localization", .choices = {}});
+  v.field("resample_ess_ratio", o.resample_ess_ratio,
+          {.unit = "",
+           .doc = "Resample when N_eff / N falls below this (1: every scan)",
+           .choices = {}});
+  v.group("free_space", "Which free cells global sampling and injection use",
+          [&] { visit(v, o.free_space); });
+  v.group("seeding", "Global localization from the best hypotheses of a lattice",
+          [&] { visit(v, o.seeding); });
+  v.group("convergence", "When the filter counts as converged", [&] { visit(v, o.convergence); });
+  v.group("recovery", "Divergence detection and recovery", [&] { visit(v, o.recovery); });
+}
+
+void visit(OptionVisitor& v, MappingOptions& o) {
+  v.field("model", o.model,
+          {.unit = "",
+           .doc = "The model (one of lc, gt, gt-rigid, gt-affine, ct, gp, gpgt, dt, tps, auto)",
+           .choices = {}});
+  v.group("common", "Shared", [&] { visit(v, o.common); });
+  v.group("ransac", "Gt variants (and gpgt's global part)", [&] { visit(v, o.ransac); });
+  v.field("gpgt_inlier_threshold", o.gpgt_inlier_threshold,
+          {.unit = "m",
+           .doc = "The RANSAC inlier distance of gpgt's similarity (wide: the GP takes the bends)",
+           .choices = {}});
+  v.group("lc", "Lc", [&] { visit(v, o.lc); });
+  v.group("ct", "Ct", [&] { visit(v, o.ct); });
+  v.group("gp", "Gp and gpgt", [&] { visit(v, o.gp); });
+  v.group("tps", "Tps", [&] { visit(v, o.tps); });
+  v.group("auto_select", "Auto", [&] { visit(v, o.auto_select); });
+}
+
+void visit(OptionVisitor& v, OutlierScanOptions& o) {
+  v.field("enabled", o.enabled,
+          {.unit = "",
+           .doc = "Drop scans whose pairs disagree with the rest (false: keep every scan)",
+           .choices = {}});
+  v.field("cell", o.cell,
+          {.unit = "m", .doc = "Pairs are compared within cells of this size", .choices = {}});
+  v.field("max_deviation", o.max_deviation,
+          {.unit = "m",
+           .doc = "A scan farther than this from its cells' consensus loses its pairs",
+           .choices = {}});
+  v.field("min_cell_pairs", o.min_cell_pairs,
+          {.unit = "",
+           .doc = "Other scans' pairs a cell needs for its consensus to count",
+           .choices = {}});
+  v.field("min_pairs", o.min_pairs, {.unit = "", .doc = "Pairs needed at all", .choices = {}});
+  v.field("similarity_inlier_threshold", o.similarity_inlier_threshold,
+          {.unit = "m",
+           .doc = "The RANSAC inlier distance of the similarity the residuals are taken from",
+           .choices = {}});
+  v.field("min_scan_pairs", o.min_scan_pairs,
+          {.unit = "",
+           .doc = "Pairs of a scan that must have a consensus to compare with before the scan can "
+                  "be dropped",
+           .choices = {}});
+}
+
+void visit(OptionVisitor& v, PairExtractionOptions& o) {
+  v.field("beam_step", o.beam_step,
+          {.unit = "", .doc = "Keep every k-th beam of a scan (beam subsampling)", .choices = {}});
+  v.field(
+      "max_pairs_per_scan", o.max_pairs_per_scan,
+      {.unit = "", .doc = "Then at most this many pairs per scan, evenly spread", .choices = {}});
+  v.field("max_range", o.max_range,
+          {.unit = "m", .doc = "Longer readings make no pairs", .choices = {}});
+  v.field("max_wall_distance", o.max_wall_distance,
+          {.unit = "m",
+           .doc = "An endpoint must lie this close to an occupied cell of each map",
+           .choices = {}});
+}
+
+void visit(OptionVisitor& v, ScaleRefitOptions& o) {
+  v.field(
+      "enabled", o.enabled,
+      {.unit = "", .doc = "Refit the scale jointly with the refined plan poses", .choices = {}});
+  v.field("min_scans", o.min_scans,
+          {.unit = "",
+           .doc = "Matched scans the refit needs, else the search's scale stays",
+           .choices = {}});
+  v.field("max_iterations", o.max_iterations,
+          {.unit = "", .doc = "Iterations of the joint Gauss-Newton at most", .choices = {}});
+  v.field("jackknife_blocks", o.jackknife_blocks,
+          {.unit = "", .doc = "Blocks of scans for the scale's standard deviation", .choices = {}});
+  v.field("max_change", o.max_change,
+          {.unit = "",
+           .doc = "A refit farther than this share from the searched scale is not trusted (too few "
+                  "or bad scans)",
+           .choices = {}});
+  v.field("retrack_change", o.retrack_change,
+          {.unit = "",
+           .doc = "Track the plan again when the refit moves the scale by more than this share",
+           .choices = {}});
+  v.field("max_plan_passes", o.max_plan_passes,
+          {.unit = "", .doc = "Tracking passes of the plan filter at most", .choices = {}});
+}
+
+void visit(OptionVisitor& v, DualCheckOptions& o) {
+  v.field(
+      "local_window", o.local_window,
+      {.unit = "", .doc = "Scans (pose pairs) the local registration is fitted to", .choices = {}});
+  v.field("local_min_pairs", o.local_min_pairs,
+          {.unit = "", .doc = "Pose pairs the local registration needs", .choices = {}});
+  v.field("local_max_age", o.local_max_age,
+          {.unit = "scans",
+           .doc = "The local registration stays valid this long without news",
+           .choices = {}});
+  v.field("local_distance", o.local_distance,
+          {.unit = "m",
+           .doc = "A plan pose farther than this from the local registration's disagrees",
+           .choices = {}});
+  v.field("local_heading", o.local_heading,
+          {.unit = "rad", .doc = "Likewise for the heading", .choices = {}});
+  v.field("local_reinitialize_distance", o.local_reinitialize_distance,
+          {.unit = "m",
+           .doc = "Re-initialize the plan filter when it disagrees locally by more than this",
+           .choices = {}});
+  v.field("local_reinitialize_heading", o.local_reinitialize_heading,
+          {.unit = "rad", .doc = "Likewise for the heading", .choices = {}});
+  v.field(
+      "consistency_distance", o.consistency_distance,
+      {.unit = "m",
+       .doc = "Without a fresh local registration: farther than this from the global one disagrees",
+       .choices = {}});
+  v.field("consistency_heading", o.consistency_heading,
+          {.unit = "rad", .doc = "Likewise for the heading", .choices = {}});
+  v.field("consistency_scans", o.consistency_scans,
+          {.unit = "scans",
+           .doc = "Consecutive disagreeing scans before the plan filter is re-initialized",
+           .choices = {}});
+  v.field("reconverge_scans", o.reconverge_scans,
+          {.unit = "scans",
+           .doc = "Unconverged scans before the plan filter is re-initialized",
+           .choices = {}});
+  v.field("local_reinitialize_sigma", o.local_reinitialize_sigma,
+          {.unit = "m",
+           .doc = "Spread of a cloud re-initialized by the local registration",
+           .choices = {}});
+  v.field("local_reinitialize_heading_sigma", o.local_reinitialize_heading_sigma,
+          {.unit = "rad", .doc = "Its heading spread", .choices = {}});
+  v.field("reinitialize_sigma", o.reinitialize_sigma,
+          {.unit = "m",
+           .doc = "Spread of a cloud re-initialized by the global registration",
+           .choices = {}});
+  v.field("reinitialize_heading_sigma", o.reinitialize_heading_sigma,
+          {.unit = "rad", .doc = "Its heading spread", .choices = {}});
+}
+
+void visit(OptionVisitor& v, ScaleSearchOptions& o) {
+  v.group("range",
+          "Scales (world metres per plan metre) searched when the plan's scale is not given",
+          [&] { visit(v, o.range); });
+  v.field(
+      "initial_sigma_share", o.initial_sigma_share,
+      {.unit = "",
+       .doc = "Spread of the scales at the search start, as a share of the range (no registration)",
+       .choices = {}});
+  enum_field(v, "model", o.model,
+             {{"likelihood_field", ObservationModelKind::likelihood_field},
+              {"beam", ObservationModelKind::beam}},
+             "The plan filter's model during the search");
+  v.group("observation", "Beams per scan of the search", [&] { visit(v, o.observation); });
+  v.field(
+      "walk", o.walk,
+      {.unit = "",
+       .doc = "Random walk of the scale during the search, per square root of a metre travelled",
+       .choices = {}});
+  v.field("scans", o.scans,
+          {.unit = "", .doc = "Scans of the search after the plan filter started", .choices = {}});
+  v.field("profile_range", o.profile_range,
+          {.unit = "", .doc = "Profile the searched scale over 1 +- this (share)", .choices = {}});
+  v.field("profile_steps", o.profile_steps,
+          {.unit = "", .doc = "Profile steps each way", .choices = {}});
+  v.field("profile_scans", o.profile_scans,
+          {.unit = "scans", .doc = "Scans profiled at most", .choices = {}});
+}
+
+void visit(OptionVisitor& v, PlanLocationOptions& o) {
+  v.field("visible_walls_only", o.visible_walls_only,
+          {.unit = "",
+           .doc = "Localize on the plan's walls as a robot inside sees them (far faces dropped)",
+           .choices = {}});
+  v.group("visible", "How the visible walls are found", [&] { visit(v, o.visible); });
+  v.group("submap", "Without a start", [&] { visit(v, o.submap); });
+  v.group("registration", "The submap's global search", [&] { visit(v, o.registration); });
+  v.group("registration_likelihood", "The plan's likelihood field for the registration",
+          [&] { visit(v, o.registration_likelihood); });
+  v.field("given_start_sigma", o.given_start_sigma,
+          {.unit = "m", .doc = "Plan filter's first spread around a given start", .choices = {}});
+  v.field("given_start_heading_sigma", o.given_start_heading_sigma,
+          {.unit = "rad", .doc = "Its heading spread", .choices = {}});
+  v.field("registered_start_sigma", o.registered_start_sigma,
+          {.unit = "m",
+           .doc = "Plan filter's first spread around the registered start",
+           .choices = {}});
+  v.field("registered_start_heading_sigma", o.registered_start_heading_sigma,
+          {.unit = "rad", .doc = "Its heading spread", .choices = {}});
+}
+
+void visit(OptionVisitor& v, GridmapLocalizationOptions& o) {
+  v.field(
+      "max_global_scans", o.max_global_scans,
+      {.unit = "",
+       .doc = "Global localization on the gridmap fails when not converged after this many scans",
+       .choices = {}});
+}
+
+void visit(OptionVisitor& v, WallFieldOptions& o) {
+  v.field("max_distance", o.max_distance,
+          {.unit = "m",
+           .doc = "Cells farther than this from every wall have no nearest wall point",
+           .choices = {}});
+  v.field("normal_radius", o.normal_radius,
+          {.unit = "cells",
+           .doc = "A wall cell's normal comes from the occupied cells within this radius (>= 1)",
+           .choices = {}});
+  v.field("max_flatness", o.max_flatness,
+          {.unit = "",
+           .doc = "A wall cell gets a normal when its neighbours' scatter is this flat (0 to 1)",
+           .choices = {}});
+}
+
+void visit(OptionVisitor& v, BeamModelOptions& o) {
+  v.field(
+      "weight_hit", o.weight_hit,
+      {.unit = "", .doc = "alpha: weight of hits of the expected wall (eq. 3.47)", .choices = {}});
+  v.field("weight_unexpected", o.weight_unexpected,
+          {.unit = "",
+           .doc = "beta: weight of beams stopped short by what the map lacks",
+           .choices = {}});
+  v.field("weight_random", o.weight_random,
+          {.unit = "", .doc = "gamma: weight of random readings (> 0)", .choices = {}});
+  v.field("weight_max", o.weight_max,
+          {.unit = "", .doc = "delta: weight of max-range readings", .choices = {}});
+  v.field("sigma_hit", o.sigma_hit,
+          {.unit = "m",
+           .doc = "Standard deviation of a hit about the expected range (eq. 3.43)",
+           .choices = {}});
+  v.field("lambda_unexpected", o.lambda_unexpected,
+          {.unit = "1/m",
+           .doc = "Rate of the exponential of unexpected short readings (eq. 3.46)",
+           .choices = {}});
+  v.field("max_range", o.max_range,
+          {.unit = "m", .doc = "z_max of eq. 3.44-3.45 (0: each scan's own)", .choices = {}});
+  v.field("max_window", o.max_window,
+          {.unit = "m",
+           .doc = "Width of the max-range part below the max range (eq. 3.45)",
+           .choices = {}});
+  v.field("beam_weight", o.beam_weight,
+          {.unit = "", .doc = "Temperature: the scan's log-likelihood times this", .choices = {}});
+  v.field("unknown_is_occupied", o.unknown_is_occupied,
+          {.unit = "",
+           .doc = "Whether unknown cells stop the ray casting (GridRayCasterOptions)",
+           .choices = {}});
+}
+
+void visit(OptionVisitor& v, MapFilterOptions& o) {
+  v.group("filter", "The particle filter", [&] { visit(v, o.filter); });
+  enum_field(v, "model", o.model,
+             {{"likelihood_field", ObservationModelKind::likelihood_field},
+              {"beam", ObservationModelKind::beam}},
+             "Its observation model");
+  v.group("likelihood", "The likelihood field (always built", [&] { visit(v, o.likelihood); });
+  v.group("observation", "Beams per scan of the filter", [&] { visit(v, o.observation); });
+  v.group("runner", "How the filter is fed", [&] { visit(v, o.runner); });
+}
+
+void visit(OptionVisitor& v, ModelComparisonOptions& o) {
+  v.field("models", o.models, {.unit = "", .doc = "The models fitted and judged", .choices = {}});
+  v.group("mapping", "Options of every model (`model` is set per model)",
+          [&] { visit(v, o.mapping); });
+  v.field(
+      "cv_folds", o.cv_folds,
+      {.unit = "", .doc = "k of each model's k-fold cross-validation (0: none)", .choices = {}});
+  v.field("back_and_forth_rounds", o.back_and_forth_rounds,
+          {.unit = "",
+           .doc = "Round trips per point of the back-and-forth test (thesis 6.5)",
+           .choices = {}});
+  v.field("back_and_forth_points", o.back_and_forth_points,
+          {.unit = "", .doc = "Domain points followed", .choices = {}});
+}
+
+void visit(OptionVisitor& v, DualLocalizerOptions& o) {
+  v.group("plan", "The filter on the floorplan", [&] { visit(v, o.plan); });
+  v.group("grid", "The filter on the gridmap", [&] { visit(v, o.grid); });
+  v.group("beam", "The beam model of the filters that choose it", [&] { visit(v, o.beam); });
+  v.group("walls", "The scan matchers' wall lookup", [&] { visit(v, o.walls); });
+  v.field("plan_beam_consistency", o.plan_beam_consistency,
+          {.unit = "",
+           .doc = "Match scans onto the plan by the beams that reach its first wall",
+           .choices = {}});
+  v.field("refine_poses", o.refine_poses,
+          {.unit = "",
+           .doc = "Pairs only from scans whose scan match succeeded on both maps",
+           .choices = {}});
+  v.group("gridmap_localization", "Step 1", [&] { visit(v, o.gridmap_localization); });
+  v.group("plan_location", "Step 2", [&] { visit(v, o.plan_location); });
+  v.group("scale_search", "Step 3", [&] { visit(v, o.scale_search); });
+  v.group("dual_check", "Step 4", [&] { visit(v, o.dual_check); });
+  v.group("scale_refit", "Step 5", [&] { visit(v, o.scale_refit); });
+  v.group("pairs", "How endpoints become pairs", [&] { visit(v, o.pairs); });
+  v.group("outlier_scans",
+          "Scans whose pairs disagree with the other scans' at the same walls are dropped",
+          [&] { visit(v, o.outlier_scans); });
+  v.field("threads", o.threads,
+          {.unit = "", .doc = "Threads of the observation models", .choices = {}});
+  v.field("seed", o.seed,
+          {.unit = "", .doc = "Randomness of both filters (see SeedStream)", .choices = {}});
+}
+
+void visit(OptionVisitor& v, AlignmentOptions& o) {
+  v.group("localization", "How pairs are made", [&] { visit(v, o.localization); });
+  v.group("models", "Which models, cross-validation, back-and-forth", [&] { visit(v, o.models); });
+  v.field("near_pairs", o.near_pairs,
+          {.unit = "m",
+           .doc = "Wall distances are also summarized over the plan wall points this close to a "
+                  "pair (where the models have data)",
+           .choices = {}});
+  v.field("wall_distance_cap", o.wall_distance_cap,
+          {.unit = "m",
+           .doc = "The gridmap's distance field for wall distances is capped here",
+           .choices = {}});
+  v.field("domain_spacing", o.domain_spacing,
+          {.unit = "m",
+           .doc = "Between the plan wall samples of the evaluation domain",
+           .choices = {}});
+}
+
+void visit(OptionVisitor& v, io::DatasetLimits& o) {
+  v.field("memory_gb", o.memory_gb,
+          {.unit = "",
+           .doc = "GiB the maps may take to localize in (0: half of this machine's memory)",
+           .choices = {}});
+  v.field("crop_above_cells", o.crop_above_cells,
+          {.unit = "cells",
+           .doc = "Maps larger than this are cropped to their known cells and crop_margin around",
+           .choices = {}});
+  v.field("crop_margin", o.crop_margin,
+          {.unit = "m", .doc = "Margin kept around a cropped map's known area", .choices = {}});
+}
+
+void visit(OptionVisitor& v, io::PlanRasterOptions& o) {
+  v.field("resolution", o.resolution,
+          {.unit = "m", .doc = "Cell size of a rasterized DXF plan", .choices = {}});
+  v.field("wall_thickness", o.wall_thickness,
+          {.unit = "m", .doc = "0 draws each drawn line one cell wide", .choices = {}});
+  v.field("margin", o.margin, {.unit = "m", .doc = "Free border around the plan", .choices = {}});
+}
+
+void visit(OptionVisitor& v, JobOptions& o) {
+  v.group("raster", "How a DXF plan becomes a grid", [&] { visit(v, o.raster); });
+  v.group("limits", "What loading a dataset may cost", [&] { visit(v, o.limits); });
+  v.group("align", "The main job: localization, models, evaluation", [&] { visit(v, o.align); });
+}
+
+namespace io {
+
+OptionTree job_option_tree(JobOptions& options) {
+  return [&options](OptionVisitor& v) { visit(v, options); };
+}
+
+}  // namespace io
+
+}  // namespace floorgrid

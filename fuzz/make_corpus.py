@@ -1,0 +1,247 @@
+#!/usr/bin/python3
+"""Seed corpora for the fuzz targets, made at run time (nothing of the shared data is copied
+into the repository): small hand-made inputs of every kind the parsers know, pieces of the real
+files in ../shared/data when it is there, and the model files of tests/fixtures/models.
+
+Usage: fuzz/make_corpus.py OUT_DIR [DATA_DIR]
+Writes OUT_DIR/<target>/ for dxf, image, map_yaml, carmen, pairs_csv, points_csv, model_json,
+dataset_yaml. Every seed is at most MAX_SEED bytes (the fuzzers run with -max_len of that size).
+"""
+import gzip
+import os
+import struct
+import sys
+import zlib
+from pathlib import Path
+
+MAX_SEED = 8192
+ROOT = Path(__file__).resolve().parent.parent
+
+
+def put(out: Path, target: str, name: str, data) -> None:
+    if isinstance(data, str):
+        data = data.encode()
+    if len(data) > MAX_SEED:
+        data = data[:MAX_SEED]
+    folder = out / target
+    folder.mkdir(parents=True, exist_ok=True)
+    (folder / name).write_bytes(data)
+
+
+# ---- DXF ----
+
+def dxf(entities: str, header: str = "", blocks: str = "") -> str:
+    text = "0\nSECTION\n2\nHEADER\n" + header + "0\nENDSEC\n"
+    if blocks:
+        text += "0\nSECTION\n2\nBLOCKS\n" + blocks + "0\nENDSEC\n"
+    return text + "0\nSECTION\n2\nENTITIES\n" + entities + "0\nENDSEC\n0\nEOF\n"
+
+
+def group_lines(pairs):
+    return "".join(f"{code}\n{value}\n" for code, value in pairs)
+
+
+DXF_SEEDS = {
+    "line": dxf(group_lines([(0, "LINE"), (8, "WALL"), (10, 0), (20, 0), (11, 5), (21, 0)]),
+                group_lines([(9, "$INSUNITS"), (70, 6)])),
+    "lwpolyline": dxf(group_lines([(0, "LWPOLYLINE"), (8, "A-WALL"), (90, 4), (70, 1),
+                                   (10, 0), (20, 0), (42, 0.5), (10, 4), (20, 0), (10, 4),
+                                   (20, 3), (10, 0), (20, 3)])),
+    "arcs": dxf(group_lines([(0, "ARC"), (8, "DOORS"), (10, 1), (20, 1), (40, 0.9), (50, 0),
+                             (51, 90), (0, "CIRCLE"), (8, "0"), (10, 5), (20, 5), (40, 0.3),
+                             (0, "ELLIPSE"), (8, "0"), (10, 2), (20, 2), (11, 1), (21, 0),
+                             (40, 0.5), (41, 0), (42, 6.283185307)])),
+    "spline": dxf(group_lines([(0, "SPLINE"), (8, "0"), (71, 3), (72, 8), (73, 4)] +
+                              [(40, k) for k in (0, 0, 0, 0, 1, 1, 1, 1)] +
+                              [(c, v) for x, y in ((0, 0), (1, 2), (3, 2), (4, 0))
+                               for c, v in ((10, x), (20, y), (30, 0))])),
+    "polyline": dxf(group_lines([(0, "POLYLINE"), (8, "0"), (66, 1), (70, 1),
+                                 (0, "VERTEX"), (8, "0"), (10, 0), (20, 0),
+                                 (0, "VERTEX"), (8, "0"), (10, 2), (20, 0), (42, 1),
+                                 (0, "VERTEX"), (8, "0"), (10, 2), (20, 2),
+                                 (0, "SEQEND")])),
+    "solid_text": dxf(group_lines([(0, "SOLID"), (8, "0"), (10, 0), (20, 0), (11, 1), (21, 0),
+                                   (12, 0), (22, 1), (13, 1), (23, 1), (0, "TEXT"), (8, "0"),
+                                   (10, 0), (20, 0), (40, 1), (1, "Room 101"), (0, "DIMENSION"),
+                                   (8, "0")])),
+    "insert": dxf(group_lines([(0, "INSERT"), (8, "X"), (2, "DOOR"), (10, 3), (20, 4), (41, 2),
+                               (42, -1), (50, 30), (70, 2), (71, 3), (44, 5), (45, 4)]),
+                  group_lines([(9, "$INSUNITS"), (70, 4)]),
+                  group_lines([(0, "BLOCK"), (8, "0"), (2, "DOOR"), (10, 0), (20, 0),
+                               (0, "LINE"), (8, "0"), (10, 0), (20, 0), (11, 1), (21, 0),
+                               (0, "INSERT"), (8, "0"), (2, "INNER"), (10, 0), (20, 0),
+                               (0, "ENDBLK"), (0, "BLOCK"), (8, "0"), (2, "INNER"), (10, 0),
+                               (20, 0), (0, "ARC"), (8, "0"), (10, 0), (20, 0), (40, 1),
+                               (50, 0), (51, 90), (0, "ENDBLK")])),
+    "ocs": dxf(group_lines([(0, "ARC"), (8, "0"), (10, 1), (20, 1), (30, 0), (40, 2), (50, 10),
+                            (51, 100), (210, 0), (220, 0), (230, -1)])),
+    "binary": b"AutoCAD Binary DXF\r\n\x1a\x00" + bytes(range(64)),
+}
+
+
+def dxf_pieces(path: Path, out: Path, per_seed: int = 12, most: int = 20) -> None:
+    """Seeds of a real DXF: its header's units and a few entities (or blocks) at a time."""
+    lines = path.read_text(errors="replace").splitlines()
+    pairs = [(lines[i].strip(), lines[i + 1]) for i in range(0, len(lines) - 1, 2)]
+    header = ""
+    for k, (code, value) in enumerate(pairs):
+        if code == "9" and value.strip() == "$INSUNITS" and k + 1 < len(pairs):
+            header = group_lines([pairs[k], pairs[k + 1]])
+    for section in ("ENTITIES", "BLOCKS"):
+        start = next((k for k, p in enumerate(pairs) if p == ("2", section)), None)
+        if start is None:
+            continue
+        items, current = [], []
+        for code, value in pairs[start + 1:]:
+            if code == "0" and value.strip() == "ENDSEC":
+                break
+            if code == "0" and current:
+                items.append(current)
+                current = []
+            current.append((code, value))
+        if current:
+            items.append(current)
+        for n in range(min(most, len(items) // per_seed + 1)):
+            chunk = "".join(group_lines(item) for item in items[n * per_seed:(n + 1) * per_seed])
+            body = dxf(chunk, header) if section == "ENTITIES" else dxf("", header, chunk)
+            put(out, "dxf", f"{path.stem}-{section.lower()}-{n}.dxf", body)
+
+
+# ---- images ----
+
+def png(width: int, height: int, color_type: int, bit_depth: int, rows: list,
+        palette: bytes = b"", trns: bytes = b"") -> bytes:
+    def chunk(kind: bytes, data: bytes) -> bytes:
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(
+            ">I", zlib.crc32(kind + data) & 0xFFFFFFFF)
+    raw = b"".join(b"\x00" + row for row in rows)
+    out = b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, bit_depth,
+                                                           color_type, 0, 0, 0))
+    if palette:
+        out += chunk(b"PLTE", palette)
+    if trns:
+        out += chunk(b"tRNS", trns)
+    return out + chunk(b"IDAT", zlib.compress(raw)) + chunk(b"IEND", b"")
+
+
+def image_seeds(out: Path) -> None:
+    w, h = 6, 4
+    grey = [bytes((x * 40 + y * 10) % 256 for x in range(w)) for y in range(h)]
+    put(out, "image", "grey8.png", png(w, h, 0, 8, grey))
+    put(out, "image", "grey16.png", png(w, h, 0, 16, [bytes(2 * w) for _ in range(h)]))
+    put(out, "image", "grey1.png", png(w, h, 0, 1, [b"\xa8" for _ in range(h)]))
+    put(out, "image", "grey_alpha.png", png(w, h, 4, 8, [bytes(2 * w) for _ in range(h)]))
+    put(out, "image", "rgb.png", png(w, h, 2, 8, [bytes(range(3 * w)) for _ in range(h)]))
+    put(out, "image", "rgba.png", png(w, h, 6, 8, [bytes(range(4 * w)) for _ in range(h)]))
+    put(out, "image", "palette.png", png(w, h, 3, 8, [bytes(x % 3 for x in range(w))] * h,
+                                         palette=bytes([0, 0, 0, 255, 255, 255, 205, 205, 205]),
+                                         trns=b"\xff\x00"))
+    put(out, "image", "p5.pgm", b"P5\n# comment\n6 4\n255\n" + b"".join(grey))
+    put(out, "image", "p5_16.pgm", b"P5\n3 2\n1000\n" + bytes(12))
+    put(out, "image", "p2.pgm", b"P2\n3 2\n15\n0 5 10\n15 3 7\n")
+
+
+# ---- maps, logs, CSV, manifests ----
+
+MAP_YAMLS = {
+    "trinary": "image: map.pgm\nresolution: 0.05\norigin: [-1.0, 2.0, 0.0]\nnegate: 0\n"
+               "occupied_thresh: 0.65\nfree_thresh: 0.196\n",
+    "scale": "image: map.pgm\nresolution: 0.1\norigin: [0, 0, 0.5]\nnegate: 1\nmode: scale\n"
+             "occupied_thresh: 0.6\nfree_thresh: 0.2\n",
+    "raw": "image: map.pgm\nmode: raw\nresolution: 0.025\norigin: [1e3, -1e3, -3.1]\n",
+    "flow": "{image: map.pgm, resolution: 0.05, origin: [0, 0, 0]}\n",
+}
+
+CARMEN = (
+    "# a CARMEN log\nPARAM laser_front_laser_resolution 1.0 nohost 0\n"
+    "PARAM robot_front_laser_max 30 nohost 0\n"
+    "ODOM 0.0 0.0 0.0 0.1 0.0 0.0 1.0 h 1.0\n"
+    "FLASER 5 1.0 2.0 3.0 30.0 nan 0.1 0.0 0.0 0.0 0.0 0.0 1.1 h 1.1\n"
+    "RLASER 3 1.0 2.0 3.0 0.0 0.0 3.14 0.0 0.0 0.0 1.2 h 1.2\n"
+    "ROBOTLASER1 0 -1.57 3.14 1.57 30 0.01 0 4 1 2 3 4 0 0 0 0 0 0 0 0 0 0 0 0 0 1.3 h 1.3\n"
+    "NEFF 1 2 3\nTRUEPOS 0 0 0 0 0 0 1.4 h 1.4\n"
+    "ODOM 0.1 0.0 0.01 0.1 0.0 0.0 0.0 h 2.0\n")
+
+PAIRS = {
+    "metres": "plan_x,plan_y,grid_x,grid_y\n0,0,1,1\n4,0,5.1,1\n0,3,0.9,4\n2.5,1.5,3.5,2.5\n",
+    "weights": "plan_x,plan_y,grid_x,grid_y,weight\n0,0,1,1,1\n4,0,5,1,0.5\n0,3,1,4,2\n",
+    "bom": "\ufeffplan_x,plan_y,grid_x,grid_y\r\n# comment\r\n1e3,-2e-3,+3,4\r\n",
+}
+
+POINTS = {
+    "xy": "x,y\n1,2\n-3.5,4e1\n",
+    "xytheta": "x,y,theta\n1,2,0.5\n# c\n3,4,-3.14\n",
+}
+
+MANIFESTS = {
+    "full": "name: test\nfloorplan: plan.pgm\nfloorplan_resolution: 0.05\n"
+            "floorplan_origin: [0, 0, 0]\nfloorplan_scale: auto\ngridmap: gridmap.yaml\n"
+            "log: log.carmen\ninitial_pose:\n  plan: [1, 2, 0.5]\n  grid: [0, 0, 0]\n"
+            "laser: {max_range: 30.0, min_range: 0.02, start_angle: -1.57, "
+            "angle_increment: 0.0174}\nodometry_noise: [0.05, 0.01, 0.02, 0.05]\n"
+            "truth:\n  manual_pairs: pairs.csv\n",
+    "bare": "floorplan: plan.pgm\nfloorplan_resolution: 0.1\ngridmap: gridmap.pgm\n"
+            "gridmap_resolution: 0.05\ngridmap_origin: [1, 2, 0]\nfloorplan_scale: 1.02\n",
+    "dxf_keys": "floorplan: plan.pgm\nfloorplan_resolution: 0.05\nfloorplan_units: mm\n"
+                "floorplan_layers: [\"A-WALL*\"]\nfloorplan_layers_exclude: \"*FURN*\"\n"
+                "gridmap: gridmap.yaml\n",
+}
+
+
+def compact_model(path: Path) -> str:
+    """A model file made small enough for a seed: numbers to 6 digits, lists of points cut to
+    their first 16 (every list of one model is cut alike, so their lengths still agree)."""
+    import json
+
+    def shrink(v):
+        if isinstance(v, float):
+            return float(f"{v:.6g}")
+        if isinstance(v, list):
+            return [shrink(x) for x in v[:16]]
+        if isinstance(v, dict):
+            return {k: shrink(x) for k, x in v.items()}
+        return v
+    return json.dumps(shrink(json.loads(path.read_text())), separators=(",", ":"))
+
+
+def main() -> None:
+    out = Path(sys.argv[1])
+    data = Path(sys.argv[2]) if len(sys.argv) > 2 else ROOT.parent / "shared" / "data"
+    for name, text in DXF_SEEDS.items():
+        put(out, "dxf", name + ".dxf", text)
+    image_seeds(out)
+    for name, text in MAP_YAMLS.items():
+        put(out, "map_yaml", name + ".yaml", text)
+    put(out, "carmen", "plain.log", CARMEN)
+    put(out, "carmen", "packed.log.gz", gzip.compress(CARMEN.encode(), mtime=0))
+    for name, text in PAIRS.items():
+        put(out, "pairs_csv", name + ".csv", text)
+    for name, text in POINTS.items():
+        put(out, "points_csv", name + ".csv", text)
+    for name, text in MANIFESTS.items():
+        put(out, "dataset_yaml", name + ".yaml", text)
+    for model in sorted((ROOT / "tests" / "fixtures" / "models").glob("*.json")):
+        put(out, "model_json", model.name, compact_model(model))
+    if data.is_dir():
+        for path in sorted((data / "dxf").glob("*.dxf")):
+            if not path.read_bytes().startswith(b"AutoCAD Binary"):
+                dxf_pieces(path, out)
+        for path in sorted((data / "carmen").glob("*.log.gz")) + [
+                data / "fr079" / "freiburg-079-corrected.log.gz"]:
+            if path.exists():
+                with gzip.open(path, "rb") as log:
+                    head = log.read(6000)
+                head = head[:head.rfind(b"\n") + 1]
+                put(out, "carmen", path.stem + ".head", head)
+                put(out, "carmen", path.stem + ".head.gz", gzip.compress(head, mtime=0))
+        for path in sorted(data.glob("halmstad/*/pairs/*.csv"))[:6]:
+            put(out, "pairs_csv", path.name, path.read_bytes()[:2000])
+    # Inputs that once crashed a parser (fuzz/regressions/<target>-<what>.*) stay in the corpus.
+    for path in sorted((ROOT / "fuzz" / "regressions").glob("*-*")):
+        put(out, path.name.split("-")[0], path.name, path.read_bytes())
+    counts = {t.name: len(list(t.iterdir())) for t in sorted(out.iterdir()) if t.is_dir()}
+    print("corpus:", ", ".join(f"{k} {v}" for k, v in counts.items()))
+
+
+if __name__ == "__main__":
+    main()
