@@ -9,6 +9,7 @@
 
 #include "floorgrid/core/error.hpp"
 #include "floorgrid/core/random.hpp"
+#include "floorgrid/core/validation.hpp"
 #include "floorgrid/geometry/inlier_classification.hpp"
 
 namespace floorgrid {
@@ -23,29 +24,22 @@ constexpr int kSubsetRefitPasses = 10;
   throw InputError(message, {}, 0, "pairs");
 }
 
-template <typename T>
-void require_option(bool valid, const char* field, T value, const char* rule) {
-  if (valid)
-    return;
-  std::ostringstream message;
-  message << "must be " << rule << " (got " << value << ")";
-  throw InputError(message.str(), {}, 0, std::string("ransac.") + field);
-}
-
 void validate_options(const RansacOptions& o) {
-  require_option(o.inlier_threshold > 0.0 && std::isfinite(o.inlier_threshold), "inlier_threshold",
-                 o.inlier_threshold, "> 0 metres");
-  require_option(o.confidence > 0.0 && o.confidence < 1.0, "confidence", o.confidence, "in (0, 1)");
-  require_option(o.max_iterations >= 1, "max_iterations", o.max_iterations, ">= 1");
-  require_option(o.min_iterations >= 0 && o.min_iterations <= o.max_iterations, "min_iterations",
-                 o.min_iterations, "in [0, max_iterations]");
-  require_option(o.preemptive_subset >= 1, "preemptive_subset", o.preemptive_subset, ">= 1");
-  require_option(o.verify_count >= 1, "verify_count", o.verify_count, ">= 1");
-  require_option(o.verify_subset >= 1, "verify_subset", o.verify_subset, ">= 1");
-  require_option(o.max_refit_passes >= 1, "max_refit_passes", o.max_refit_passes, ">= 1");
-  require_option(o.min_sample_separation >= 0.0 && o.min_sample_separation < 1.0,
+  require_option(o.inlier_threshold > 0.0 && std::isfinite(o.inlier_threshold), "ransac",
+                 "inlier_threshold", o.inlier_threshold, "> 0 metres");
+  require_option(o.confidence > 0.0 && o.confidence < 1.0, "ransac", "confidence", o.confidence,
+                 "in (0, 1)");
+  require_option(o.max_iterations >= 1, "ransac", "max_iterations", o.max_iterations, ">= 1");
+  require_option(o.min_iterations >= 0 && o.min_iterations <= o.max_iterations, "ransac",
+                 "min_iterations", o.min_iterations, "in [0, max_iterations]");
+  require_option(o.preemptive_subset >= 1, "ransac", "preemptive_subset", o.preemptive_subset,
+                 ">= 1");
+  require_option(o.verify_count >= 1, "ransac", "verify_count", o.verify_count, ">= 1");
+  require_option(o.verify_subset >= 1, "ransac", "verify_subset", o.verify_subset, ">= 1");
+  require_option(o.max_refit_passes >= 1, "ransac", "max_refit_passes", o.max_refit_passes, ">= 1");
+  require_option(o.min_sample_separation >= 0.0 && o.min_sample_separation < 1.0, "ransac",
                  "min_sample_separation", o.min_sample_separation, "in [0, 1)");
-  require_option(o.threads == 1 || o.threads == 2, "threads", o.threads, "1 or 2");
+  require_option(o.threads == 1 || o.threads == 2, "ransac", "threads", o.threads, "1 or 2");
 }
 
 void validate_pair(const ReferencePairs& pairs, Eigen::Index i) {

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "floorgrid/core/error.hpp"
+#include "floorgrid/core/validation.hpp"
 
 namespace floorgrid {
 
@@ -20,14 +21,6 @@ const char* to_string(SettingSource source) {
   }
   return "?";
 }
-
-namespace {
-std::string got(double value) {
-  std::ostringstream out;
-  out << "(got " << value << ")";
-  return out.str();
-}
-}  // namespace
 
 void validate_laser_settings(const LaserSettings& settings) {
   if (settings.max_range && !(std::isfinite(*settings.max_range) && *settings.max_range > 0.0)) {

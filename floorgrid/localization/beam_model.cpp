@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "floorgrid/core/error.hpp"
+#include "floorgrid/core/validation.hpp"
 
 namespace floorgrid {
 namespace {
@@ -20,15 +21,6 @@ constexpr std::size_t kMinBeamsPerThread = 2'000;
 // Beyond this many standard deviations from both ends of [0, z_max] the Gaussian's mass
 // outside the interval is below 1e-15 and its normalization is 1.
 constexpr double kNormalizationSigmas = 8.0;
-
-template <typename T>
-void require_option(bool valid, const char* field, T value, const char* rule) {
-  if (valid)
-    return;
-  std::ostringstream message;
-  message << "must be " << rule << " (got " << value << ")";
-  throw InputError(message.str(), {}, 0, std::string("beam_model.") + field);
-}
 
 /// Runs work(begin, end) over [0, count) split into at most `threads` contiguous blocks, the
 /// first on the calling thread. If a thread cannot be started its block runs here.
@@ -113,22 +105,24 @@ void cast_beams(const GridRayCaster& caster, const ScanObservation& scan,
 
 void validate_beam_model_options(const BeamModelOptions& o) {
   const auto weight_ok = [](double w) { return std::isfinite(w) && w >= 0.0; };
-  require_option(weight_ok(o.weight_hit), "weight_hit", o.weight_hit, "a finite number >= 0");
-  require_option(weight_ok(o.weight_unexpected), "weight_unexpected", o.weight_unexpected,
+  require_option(weight_ok(o.weight_hit), "beam_model", "weight_hit", o.weight_hit,
                  "a finite number >= 0");
-  require_option(std::isfinite(o.weight_random) && o.weight_random > 0.0, "weight_random",
-                 o.weight_random, "a finite number > 0");
-  require_option(weight_ok(o.weight_max), "weight_max", o.weight_max, "a finite number >= 0");
-  require_option(std::isfinite(o.sigma_hit) && o.sigma_hit > 0.0, "sigma_hit", o.sigma_hit,
-                 "a finite number > 0 (metres)");
-  require_option(std::isfinite(o.lambda_unexpected) && o.lambda_unexpected > 0.0,
+  require_option(weight_ok(o.weight_unexpected), "beam_model", "weight_unexpected",
+                 o.weight_unexpected, "a finite number >= 0");
+  require_option(std::isfinite(o.weight_random) && o.weight_random > 0.0, "beam_model",
+                 "weight_random", o.weight_random, "a finite number > 0");
+  require_option(weight_ok(o.weight_max), "beam_model", "weight_max", o.weight_max,
+                 "a finite number >= 0");
+  require_option(std::isfinite(o.sigma_hit) && o.sigma_hit > 0.0, "beam_model", "sigma_hit",
+                 o.sigma_hit, "a finite number > 0 (metres)");
+  require_option(std::isfinite(o.lambda_unexpected) && o.lambda_unexpected > 0.0, "beam_model",
                  "lambda_unexpected", o.lambda_unexpected, "a finite number > 0 (1/metre)");
-  require_option(std::isfinite(o.max_range) && o.max_range >= 0.0, "max_range", o.max_range,
-                 "a finite number >= 0 (metres; 0: the scan's)");
-  require_option(std::isfinite(o.max_window) && o.max_window > 0.0, "max_window", o.max_window,
-                 "a finite number > 0 (metres)");
-  require_option(std::isfinite(o.beam_weight) && o.beam_weight > 0.0, "beam_weight", o.beam_weight,
-                 "a finite number > 0");
+  require_option(std::isfinite(o.max_range) && o.max_range >= 0.0, "beam_model", "max_range",
+                 o.max_range, "a finite number >= 0 (metres; 0: the scan's)");
+  require_option(std::isfinite(o.max_window) && o.max_window > 0.0, "beam_model", "max_window",
+                 o.max_window, "a finite number > 0 (metres)");
+  require_option(std::isfinite(o.beam_weight) && o.beam_weight > 0.0, "beam_model", "beam_weight",
+                 o.beam_weight, "a finite number > 0");
 }
 
 BeamModel::BeamModel(const OccupancyGrid& grid, const BeamModelOptions& options)

@@ -5,31 +5,23 @@
 #include <string>
 
 #include "floorgrid/core/error.hpp"
+#include "floorgrid/core/validation.hpp"
 
 namespace floorgrid {
-namespace {
-
-template <typename T>
-void require_option(bool valid, const char* field, T value, const char* rule) {
-  if (valid)
-    return;
-  std::ostringstream message;
-  message << "must be " << rule << " (got " << value << ")";
-  throw InputError(message.str(), {}, 0, std::string("convergence.") + field);
-}
-
-}  // namespace
-
 void validate(const ConvergenceOptions& o) {
-  require_option(o.max_position_std > 0.0, "max_position_std", o.max_position_std, "> 0 metres");
-  require_option(o.max_heading_std > 0.0, "max_heading_std", o.max_heading_std, "> 0 radians");
-  require_option(o.max_scale_std > 0.0, "max_scale_std", o.max_scale_std, "> 0");
-  require_option(o.min_ess_ratio >= 0.0 && o.min_ess_ratio <= 1.0, "min_ess_ratio", o.min_ess_ratio,
-                 "in [0, 1]");
-  require_option(o.min_beam_likelihood >= 0.0 && o.min_beam_likelihood <= 1.0,
+  require_option(o.max_position_std > 0.0, "convergence", "max_position_std", o.max_position_std,
+                 "> 0 metres");
+  require_option(o.max_heading_std > 0.0, "convergence", "max_heading_std", o.max_heading_std,
+                 "> 0 radians");
+  require_option(o.max_scale_std > 0.0, "convergence", "max_scale_std", o.max_scale_std, "> 0");
+  require_option(o.min_ess_ratio >= 0.0 && o.min_ess_ratio <= 1.0, "convergence", "min_ess_ratio",
+                 o.min_ess_ratio, "in [0, 1]");
+  require_option(o.min_beam_likelihood >= 0.0 && o.min_beam_likelihood <= 1.0, "convergence",
                  "min_beam_likelihood", o.min_beam_likelihood, "in [0, 1]");
-  require_option(o.min_converged_scans >= 1, "min_converged_scans", o.min_converged_scans, ">= 1");
-  require_option(o.max_failed_scans >= 1, "max_failed_scans", o.max_failed_scans, ">= 1");
+  require_option(o.min_converged_scans >= 1, "convergence", "min_converged_scans",
+                 o.min_converged_scans, ">= 1");
+  require_option(o.max_failed_scans >= 1, "convergence", "max_failed_scans", o.max_failed_scans,
+                 ">= 1");
 }
 
 ConvergenceCheck check_convergence(const PoseEstimate& estimate, double mean_beam_likelihood,

@@ -6,18 +6,10 @@
 #include <string>
 
 #include "floorgrid/core/error.hpp"
+#include "floorgrid/core/validation.hpp"
 
 namespace floorgrid {
 namespace {
-
-template <typename T>
-void require_option(bool valid, const char* field, T value, const char* rule) {
-  if (valid)
-    return;
-  std::ostringstream message;
-  message << "must be " << rule << " (got " << value << ")";
-  throw InputError(message.str(), {}, 0, std::string("recovery.") + field);
-}
 
 bool in_unit_interval(double v) {
   return v >= 0.0 && v <= 1.0;
@@ -26,27 +18,32 @@ bool in_unit_interval(double v) {
 }  // namespace
 
 void validate(const RecoveryOptions& o) {
-  require_option(in_unit_interval(o.min_beam_likelihood), "min_beam_likelihood",
+  require_option(in_unit_interval(o.min_beam_likelihood), "recovery", "min_beam_likelihood",
                  o.min_beam_likelihood, "in [0, 1]");
-  require_option(o.max_bad_scans >= 1, "max_bad_scans", o.max_bad_scans, ">= 1");
-  require_option(o.max_position_std >= 0.0, "max_position_std", o.max_position_std, ">= 0 metres");
-  require_option(in_unit_interval(o.min_fast_slow_ratio), "min_fast_slow_ratio",
+  require_option(o.max_bad_scans >= 1, "recovery", "max_bad_scans", o.max_bad_scans, ">= 1");
+  require_option(o.max_position_std >= 0.0, "recovery", "max_position_std", o.max_position_std,
+                 ">= 0 metres");
+  require_option(in_unit_interval(o.min_fast_slow_ratio), "recovery", "min_fast_slow_ratio",
                  o.min_fast_slow_ratio, "in [0, 1]");
-  require_option(o.alpha_slow > 0.0 && o.alpha_slow <= 1.0, "alpha_slow", o.alpha_slow,
+  require_option(o.alpha_slow > 0.0 && o.alpha_slow <= 1.0, "recovery", "alpha_slow", o.alpha_slow,
                  "in (0, 1]");
-  require_option(o.alpha_fast > o.alpha_slow && o.alpha_fast <= 1.0, "alpha_fast", o.alpha_fast,
-                 "in (alpha_slow, 1]");
-  require_option(in_unit_interval(o.max_augmented_fraction), "max_augmented_fraction",
+  require_option(o.alpha_fast > o.alpha_slow && o.alpha_fast <= 1.0, "recovery", "alpha_fast",
+                 o.alpha_fast, "in (alpha_slow, 1]");
+  require_option(in_unit_interval(o.max_augmented_fraction), "recovery", "max_augmented_fraction",
                  o.max_augmented_fraction, "in [0, 1]");
-  require_option(o.recovery_fraction > 0.0 && o.recovery_fraction <= 1.0, "recovery_fraction",
-                 o.recovery_fraction, "in (0, 1]");
-  require_option(in_unit_interval(o.global_share), "global_share", o.global_share, "in [0, 1]");
-  require_option(o.initial_radius > 0.0, "initial_radius", o.initial_radius, "> 0 metres");
-  require_option(o.initial_heading_spread > 0.0, "initial_heading_spread", o.initial_heading_spread,
-                 "> 0 radians");
-  require_option(o.radius_growth >= 1.0, "radius_growth", o.radius_growth, ">= 1");
-  require_option(o.max_radius >= o.initial_radius, "max_radius", o.max_radius, ">= initial_radius");
-  require_option(o.max_recovery_scans >= 1, "max_recovery_scans", o.max_recovery_scans, ">= 1");
+  require_option(o.recovery_fraction > 0.0 && o.recovery_fraction <= 1.0, "recovery",
+                 "recovery_fraction", o.recovery_fraction, "in (0, 1]");
+  require_option(in_unit_interval(o.global_share), "recovery", "global_share", o.global_share,
+                 "in [0, 1]");
+  require_option(o.initial_radius > 0.0, "recovery", "initial_radius", o.initial_radius,
+                 "> 0 metres");
+  require_option(o.initial_heading_spread > 0.0, "recovery", "initial_heading_spread",
+                 o.initial_heading_spread, "> 0 radians");
+  require_option(o.radius_growth >= 1.0, "recovery", "radius_growth", o.radius_growth, ">= 1");
+  require_option(o.max_radius >= o.initial_radius, "recovery", "max_radius", o.max_radius,
+                 ">= initial_radius");
+  require_option(o.max_recovery_scans >= 1, "recovery", "max_recovery_scans", o.max_recovery_scans,
+                 ">= 1");
 }
 
 std::string_view to_string(DivergenceReason reason) {

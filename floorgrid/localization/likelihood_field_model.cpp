@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "floorgrid/core/error.hpp"
+#include "floorgrid/core/validation.hpp"
 
 #if defined(__AVX2__) && defined(__FMA__)
 #include <immintrin.h>
@@ -21,15 +22,6 @@ namespace {
 // Below this many particle-beam evaluations per thread, starting a thread costs more than it
 // saves (a thread start is ~20 us, an evaluation ~1 ns).
 constexpr std::size_t kMinEvaluationsPerThread = 50'000;
-
-template <typename T>
-void require_option(bool valid, const char* field, T value, const char* rule) {
-  if (valid)
-    return;
-  std::ostringstream message;
-  message << "must be " << rule << " (got " << value << ")";
-  throw InputError(message.str(), {}, 0, std::string("likelihood_field.") + field);
-}
 
 /// Runs work(begin, end) over [0, count) split into at most `threads` contiguous blocks, the
 /// first on the calling thread. If a thread cannot be started its block runs here.
@@ -57,20 +49,20 @@ void run_static_blocks(std::size_t count, int threads, const Work& work) {
 }  // namespace
 
 void validate_likelihood_field_options(const LikelihoodFieldOptions& o) {
-  require_option(std::isfinite(o.sigma_hit) && o.sigma_hit > 0.0, "sigma_hit", o.sigma_hit,
-                 "a finite number > 0 (metres)");
-  require_option(std::isfinite(o.z_hit) && o.z_hit >= 0.0, "z_hit", o.z_hit,
+  require_option(std::isfinite(o.sigma_hit) && o.sigma_hit > 0.0, "likelihood_field", "sigma_hit",
+                 o.sigma_hit, "a finite number > 0 (metres)");
+  require_option(std::isfinite(o.z_hit) && o.z_hit >= 0.0, "likelihood_field", "z_hit", o.z_hit,
                  "a finite number >= 0");
-  require_option(std::isfinite(o.z_rand) && o.z_rand > 0.0, "z_rand", o.z_rand,
+  require_option(std::isfinite(o.z_rand) && o.z_rand > 0.0, "likelihood_field", "z_rand", o.z_rand,
                  "a finite number > 0");
-  require_option(std::isfinite(o.max_distance) && o.max_distance > 0.0, "max_distance",
-                 o.max_distance, "a finite number > 0 (metres)");
-  require_option(std::isfinite(o.beam_weight) && o.beam_weight > 0.0, "beam_weight", o.beam_weight,
-                 "a finite number > 0");
-  require_option(std::isfinite(o.known_margin) && o.known_margin >= 0.0, "known_margin",
-                 o.known_margin, "a finite number >= 0 (metres)");
-  require_option(o.min_known_share >= 0.0 && o.min_known_share <= 1.0, "min_known_share",
-                 o.min_known_share, "in [0, 1]");
+  require_option(std::isfinite(o.max_distance) && o.max_distance > 0.0, "likelihood_field",
+                 "max_distance", o.max_distance, "a finite number > 0 (metres)");
+  require_option(std::isfinite(o.beam_weight) && o.beam_weight > 0.0, "likelihood_field",
+                 "beam_weight", o.beam_weight, "a finite number > 0");
+  require_option(std::isfinite(o.known_margin) && o.known_margin >= 0.0, "likelihood_field",
+                 "known_margin", o.known_margin, "a finite number >= 0 (metres)");
+  require_option(o.min_known_share >= 0.0 && o.min_known_share <= 1.0, "likelihood_field",
+                 "min_known_share", o.min_known_share, "in [0, 1]");
 }
 
 LikelihoodFieldModel::LikelihoodFieldModel(const OccupancyGrid& grid,

@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "floorgrid/core/error.hpp"
+#include "floorgrid/core/validation.hpp"
 #include "floorgrid/localization/resampling.hpp"
 
 namespace floorgrid {
@@ -22,15 +23,6 @@ constexpr double kMinScale = 1e-6;
 // Below this sum the direct products w_i exp(ll_i - max) lose precision (subnormals) or their
 // reciprocal overflows; the log domain takes over.
 constexpr double kMinRepresentableTotal = 1e-200;
-
-template <typename T>
-void require_option(bool valid, const char* field, T value, const char* rule) {
-  if (valid)
-    return;
-  std::ostringstream message;
-  message << "must be " << rule << " (got " << value << ")";
-  throw InputError(message.str(), {}, 0, std::string("particle_filter.") + field);
-}
 
 bool non_negative(double v) {
   return v >= 0.0 && std::isfinite(v);
@@ -50,15 +42,21 @@ std::size_t share_of(double fraction, std::size_t count) {
 }  // namespace
 
 void validate(const ParticleFilterOptions& o) {
-  require_option(non_negative(o.motion.alpha1), "motion.alpha1", o.motion.alpha1, ">= 0");
-  require_option(non_negative(o.motion.alpha2), "motion.alpha2", o.motion.alpha2, ">= 0");
-  require_option(non_negative(o.motion.alpha3), "motion.alpha3", o.motion.alpha3, ">= 0");
-  require_option(non_negative(o.motion.alpha4), "motion.alpha4", o.motion.alpha4, ">= 0");
-  require_option(non_negative(o.scale_walk), "scale_walk", o.scale_walk, ">= 0");
-  require_option(o.tracking_particles >= 1, "tracking_particles", o.tracking_particles, ">= 1");
-  require_option(o.global_particles >= 1, "global_particles", o.global_particles, ">= 1");
-  require_option(o.resample_ess_ratio >= 0.0 && o.resample_ess_ratio <= 1.0, "resample_ess_ratio",
-                 o.resample_ess_ratio, "in [0, 1]");
+  require_option(non_negative(o.motion.alpha1), "particle_filter", "motion.alpha1", o.motion.alpha1,
+                 ">= 0");
+  require_option(non_negative(o.motion.alpha2), "particle_filter", "motion.alpha2", o.motion.alpha2,
+                 ">= 0");
+  require_option(non_negative(o.motion.alpha3), "particle_filter", "motion.alpha3", o.motion.alpha3,
+                 ">= 0");
+  require_option(non_negative(o.motion.alpha4), "particle_filter", "motion.alpha4", o.motion.alpha4,
+                 ">= 0");
+  require_option(non_negative(o.scale_walk), "particle_filter", "scale_walk", o.scale_walk, ">= 0");
+  require_option(o.tracking_particles >= 1, "particle_filter", "tracking_particles",
+                 o.tracking_particles, ">= 1");
+  require_option(o.global_particles >= 1, "particle_filter", "global_particles", o.global_particles,
+                 ">= 1");
+  require_option(o.resample_ess_ratio >= 0.0 && o.resample_ess_ratio <= 1.0, "particle_filter",
+                 "resample_ess_ratio", o.resample_ess_ratio, "in [0, 1]");
   validate(o.free_space);
   validate(o.seeding);
   validate(o.convergence);

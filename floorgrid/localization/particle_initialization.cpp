@@ -8,6 +8,7 @@
 #include <string>
 
 #include "floorgrid/core/error.hpp"
+#include "floorgrid/core/validation.hpp"
 #include "floorgrid/maps/distance_field.hpp"
 
 namespace floorgrid {
@@ -15,15 +16,6 @@ namespace {
 
 // Scales are kept above this (a scale is a ratio of lengths).
 constexpr double kMinScale = 1e-6;
-
-template <typename T>
-void require_option(bool valid, const char* prefix, const char* field, T value, const char* rule) {
-  if (valid)
-    return;
-  std::ostringstream message;
-  message << "must be " << rule << " (got " << value << ")";
-  throw InputError(message.str(), {}, 0, std::string(prefix) + "." + field);
-}
 
 void prepare_set(ParticleSet& set, std::size_t count, bool with_scale) {
   set.x.resize(count);

@@ -153,8 +153,8 @@ void GaussianProcessMapping::load_parameters(const Value& j, const std::string& 
   prediction.lattice.margin = number(member(lattice, "margin", where, l), where, l + "margin");
   // The lattice's size is bounded by this build's own limit, whatever the file says: a file
   // must not make `map` allocate without bound. The loader's options may bound it further.
-  const Eigen::Index max_nodes = std::min(GpLatticeOptions{}.max_nodes,
-                                          gp_options_.prediction.lattice.max_nodes);
+  const Eigen::Index max_nodes =
+      std::min(GpLatticeOptions{}.max_nodes, gp_options_.prediction.lattice.max_nodes);
   if (const Value* nodes = optional_member(lattice, "max_nodes"))
     prediction.lattice.max_nodes = std::min<Eigen::Index>(
         integer(*nodes, where, l + "max_nodes", 4, GpLatticeOptions{}.max_nodes), max_nodes);

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "floorgrid/core/error.hpp"
+#include "floorgrid/core/validation.hpp"
 
 namespace floorgrid {
 namespace {
@@ -13,12 +14,6 @@ namespace {
 [[noreturn]] void fail(const std::string& prefix, const std::string& field,
                        const std::string& what) {
   throw InputError(what, {}, 0, prefix + "." + field);
-}
-
-std::string got(double value) {
-  std::ostringstream out;
-  out << " (got " << value << ")";
-  return out.str();
 }
 
 void check_bounds(const Eigen::VectorXd& bound, const std::string& prefix, const char* field,
@@ -54,25 +49,25 @@ Eigen::VectorXd clip(Eigen::VectorXd x, const RpropOptions& options) {
 void validate_rprop_options(const RpropOptions& options, const std::string& prefix,
                             Eigen::Index dimension) {
   if (!(options.initial_step > 0.0) || !std::isfinite(options.initial_step)) {
-    fail(prefix, "initial_step", "must be finite and > 0" + got(options.initial_step));
+    fail(prefix, "initial_step", "must be finite and > 0 " + got(options.initial_step));
   }
   if (!(options.increase > 1.0) || !std::isfinite(options.increase)) {
-    fail(prefix, "increase", "must be finite and > 1" + got(options.increase));
+    fail(prefix, "increase", "must be finite and > 1 " + got(options.increase));
   }
   if (!(options.decrease > 0.0 && options.decrease < 1.0)) {
-    fail(prefix, "decrease", "must be in (0, 1)" + got(options.decrease));
+    fail(prefix, "decrease", "must be in (0, 1) " + got(options.decrease));
   }
   if (!(options.min_step > 0.0) || !std::isfinite(options.min_step)) {
-    fail(prefix, "min_step", "must be finite and > 0" + got(options.min_step));
+    fail(prefix, "min_step", "must be finite and > 0 " + got(options.min_step));
   }
   if (!(options.max_step >= options.min_step) || !std::isfinite(options.max_step)) {
-    fail(prefix, "max_step", "must be finite and >= min_step" + got(options.max_step));
+    fail(prefix, "max_step", "must be finite and >= min_step " + got(options.max_step));
   }
   if (options.max_iterations < 1) {
-    fail(prefix, "max_iterations", "must be >= 1" + got(options.max_iterations));
+    fail(prefix, "max_iterations", "must be >= 1 " + got(options.max_iterations));
   }
   if (!(options.tolerance >= 0.0) || !std::isfinite(options.tolerance)) {
-    fail(prefix, "tolerance", "must be finite and >= 0" + got(options.tolerance));
+    fail(prefix, "tolerance", "must be finite and >= 0 " + got(options.tolerance));
   }
   check_bounds(options.lower, prefix, "lower", dimension);
   check_bounds(options.upper, prefix, "upper", dimension);

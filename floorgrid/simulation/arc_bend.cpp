@@ -6,6 +6,7 @@
 #include <string>
 
 #include "floorgrid/core/error.hpp"
+#include "floorgrid/core/validation.hpp"
 #include "floorgrid/geometry/pose2.hpp"
 
 namespace floorgrid {
@@ -44,12 +45,6 @@ struct AxisFrame {
 AxisFrame axis_frame(const ArcBend& bend) {
   const Eigen::Vector2d along(std::cos(bend.axis_angle), std::sin(bend.axis_angle));
   return {along, Eigen::Vector2d(-along.y(), along.x())};
-}
-
-std::string got(double value) {
-  std::ostringstream out;
-  out << "(got " << value << ")";
-  return out.str();
 }
 
 }  // namespace

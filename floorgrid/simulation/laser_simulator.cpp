@@ -6,15 +6,10 @@
 #include <string>
 
 #include "floorgrid/core/error.hpp"
+#include "floorgrid/core/validation.hpp"
 
 namespace floorgrid {
 namespace {
-
-std::string got(double value) {
-  std::ostringstream out;
-  out << "(got " << value << ")";
-  return out.str();
-}
 
 // Uniform in the open interval (0, limit): Random::uniform includes its lower end.
 double draw_random_reading(double limit, Random& random) {

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "floorgrid/core/error.hpp"
+#include "floorgrid/core/validation.hpp"
 #include "floorgrid/geometry/pose2.hpp"
 
 namespace floorgrid {
@@ -40,12 +41,6 @@ BlendWeight blend_weight(const RoomRotation& room, const Eigen::Vector2d& p) {
     return {};
   const double t = 1.0 - d / room.band;
   return {smoothstep(t), -smoothstep_slope(t) / room.band * (offset / d)};
-}
-
-std::string got(double value) {
-  std::ostringstream out;
-  out << "(got " << value << ")";
-  return out.str();
 }
 
 }  // namespace

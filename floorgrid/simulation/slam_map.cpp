@@ -8,15 +8,10 @@
 #include <string>
 
 #include "floorgrid/core/error.hpp"
+#include "floorgrid/core/validation.hpp"
 
 namespace floorgrid {
 namespace {
-
-std::string got(double value) {
-  std::ostringstream out;
-  out << "(got " << value << ")";
-  return out.str();
-}
 
 /// The world ray a beam traces: from the laser, `length` metres along `direction`.
 struct BeamRay {

@@ -8,18 +8,13 @@
 #include <utility>
 
 #include "floorgrid/core/error.hpp"
+#include "floorgrid/core/validation.hpp"
 
 namespace floorgrid {
 namespace {
 
 // Halvings tried before a Newton step is given up as not reducing the residual.
 constexpr int kMaxStepHalvings = 30;
-
-std::string got(double value) {
-  std::ostringstream out;
-  out << "(got " << value << ")";
-  return out.str();
-}
 
 void validate_warp_params(const WarpParams& params) {
   const Pose2& T = params.T_grid_world;
