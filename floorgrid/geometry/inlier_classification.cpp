@@ -2,7 +2,8 @@
 
 #include <algorithm>
 #include <cfloat>
-#include <thread>
+
+#include "floorgrid/core/parallel.hpp"
 
 namespace floorgrid {
 namespace {
@@ -193,13 +194,11 @@ Sums over_blocks(Eigen::Index n, int threads, const Input& in, Range range) {
             partial[static_cast<std::size_t>(k)]);
     }
   };
-  if (threads >= 2 && n >= 2 * kMinPairsPerThread) {
-    std::thread helper(run, blocks / 2, blocks);
-    run(0, blocks / 2);
-    helper.join();
-  } else {
-    run(0, blocks);
-  }
+  // Per-block partial sums added in block order: the same sums whatever the split.
+  parallel_blocks(static_cast<std::size_t>(blocks), n >= 2 * kMinPairsPerThread ? threads : 1,
+                  [&](std::size_t first, std::size_t last) {
+                    run(static_cast<Eigen::Index>(first), static_cast<Eigen::Index>(last));
+                  });
   Sums total;
   for (const Sums& p : partial)
     total += p;

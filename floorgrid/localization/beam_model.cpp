@@ -6,9 +6,9 @@
 #include <sstream>
 #include <string>
 #include <system_error>
-#include <thread>
 
 #include "floorgrid/core/error.hpp"
+#include "floorgrid/core/parallel.hpp"
 #include "floorgrid/core/validation.hpp"
 
 namespace floorgrid {
@@ -21,29 +21,6 @@ constexpr std::size_t kMinBeamsPerThread = 2'000;
 // Beyond this many standard deviations from both ends of [0, z_max] the Gaussian's mass
 // outside the interval is below 1e-15 and its normalization is 1.
 constexpr double kNormalizationSigmas = 8.0;
-
-/// Runs work(begin, end) over [0, count) split into at most `threads` contiguous blocks, the
-/// first on the calling thread. If a thread cannot be started its block runs here.
-template <typename Work>
-void run_static_blocks(std::size_t count, int threads, const Work& work) {
-  const std::size_t used = std::clamp<std::size_t>(static_cast<std::size_t>(std::max(threads, 1)),
-                                                   1, std::max<std::size_t>(count, 1));
-  std::vector<std::thread> helpers;
-  std::vector<std::pair<std::size_t, std::size_t>> left_over;
-  for (std::size_t b = 1; b < used; ++b) {
-    const std::size_t begin = count * b / used, end = count * (b + 1) / used;
-    try {
-      helpers.emplace_back([&work, begin, end] { work(begin, end); });
-    } catch (const std::system_error&) {
-      left_over.emplace_back(begin, end);
-    }
-  }
-  work(0, count / used);
-  for (const auto& [begin, end] : left_over)
-    work(begin, end);
-  for (std::thread& helper : helpers)
-    helper.join();
-}
 
 /// The beams' directions in the robot frame and the grid's yaw, as cos and sin, computed once
 /// per scan.
@@ -209,7 +186,7 @@ void BeamModel::log_likelihood(const ScanObservation& scan, const ParticleSet& p
   };
   const std::size_t max_threads = std::max<std::size_t>(1, n * beams / kMinBeamsPerThread);
   const int used = static_cast<int>(std::min<std::size_t>(std::max(threads, 1), max_threads));
-  run_static_blocks(n, used, score_block);
+  parallel_blocks(n, used, score_block);
 }
 
 double BeamModel::mean_beam_likelihood(const ScanObservation& scan, const Pose2& pose,

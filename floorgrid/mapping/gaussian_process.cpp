@@ -7,8 +7,8 @@
 #include <utility>
 
 #include "floorgrid/core/error.hpp"
+#include "floorgrid/core/parallel.hpp"
 #include "floorgrid/mapping/gp_likelihood.hpp"
-#include "floorgrid/mapping/gp_parallel.hpp"
 
 namespace floorgrid {
 namespace {
@@ -147,11 +147,11 @@ Eigen::Vector2d GaussianProcess::mean(const Eigen::Vector2d& point) const {
 
 Eigen::Matrix2Xd GaussianProcess::mean_batch(Eigen::Ref<const Eigen::Matrix2Xd> points) const {
   Eigen::Matrix2Xd out(2, points.cols());
-  gp_run_blocks(points.cols(), kMeanBlock, options_.threads,
-                [&](Eigen::Index begin, Eigen::Index end) {
-                  for (Eigen::Index j = begin; j < end; ++j)
-                    out.col(j) = mean(points.col(j));
-                });
+  parallel_chunks(static_cast<std::size_t>(points.cols()), kMeanBlock, options_.threads,
+                  [&](Eigen::Index begin, Eigen::Index end) {
+                    for (Eigen::Index j = begin; j < end; ++j)
+                      out.col(j) = mean(points.col(j));
+                  });
   return out;
 }
 
@@ -165,12 +165,12 @@ Eigen::Vector2d GaussianProcess::exact_mean(const Eigen::Vector2d& point) const 
 Eigen::Matrix2Xd GaussianProcess::exact_mean_batch(
     Eigen::Ref<const Eigen::Matrix2Xd> points) const {
   Eigen::Matrix2Xd out(2, points.cols());
-  gp_run_blocks(points.cols(), kMeanBlock, options_.threads,
-                [&](Eigen::Index begin, Eigen::Index end) {
-                  for (Eigen::Index j = begin; j < end; ++j) {
-                    out.col(j) = exact_mean(points.col(j));
-                  }
-                });
+  parallel_chunks(static_cast<std::size_t>(points.cols()), kMeanBlock, options_.threads,
+                  [&](Eigen::Index begin, Eigen::Index end) {
+                    for (Eigen::Index j = begin; j < end; ++j) {
+                      out.col(j) = exact_mean(points.col(j));
+                    }
+                  });
   return out;
 }
 
@@ -205,8 +205,9 @@ Eigen::VectorXd GaussianProcess::standard_deviation_batch(Eigen::Ref<const Eigen
   const double sf2 = state_.hyperparameters.signal_std * state_.hyperparameters.signal_std;
   const double sn2 = state_.hyperparameters.noise_std * state_.hyperparameters.noise_std;
   Eigen::VectorXd out(points.cols());
-  gp_run_blocks(
-      points.cols(), kStdBlock, options_.threads, [&](Eigen::Index begin, Eigen::Index end) {
+  parallel_chunks(
+      static_cast<std::size_t>(points.cols()), kStdBlock, options_.threads,
+      [&](Eigen::Index begin, Eigen::Index end) {
         // eq. 3.23: k** - k*^T K^-1 k* = sf^2 - |L^-1 k*|^2.
         Eigen::MatrixXd v(size(), end - begin);
         for (Eigen::Index j = begin; j < end; ++j) {

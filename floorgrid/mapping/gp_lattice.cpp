@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "floorgrid/core/error.hpp"
-#include "floorgrid/mapping/gp_parallel.hpp"
+#include "floorgrid/core/parallel.hpp"
 
 namespace floorgrid {
 namespace {
@@ -141,7 +141,7 @@ GpMeanLattice GpMeanLattice::build(const GpHyperparameters& hyperparameters,
 
     // One task per output, each a fixed set of products: the thread count changes nothing.
     double errors[2] = {0.0, 0.0};
-    gp_run_tasks(2, threads, [&](Eigen::Index c) {
+    parallel_tasks(2, threads, [&](Eigen::Index c) {
       const Eigen::Index nx = n[0], ny = n[1];
       Eigen::MatrixXd right(xs.size(), 2 * ny);
       right << alpha.row(c).transpose().asDiagonal() * ey.transpose(),
@@ -159,7 +159,7 @@ GpMeanLattice GpMeanLattice::build(const GpHyperparameters& hyperparameters,
       }
     });
     // Exact values at every cell centre and edge midpoint, where a Hermite patch errs most.
-    gp_run_tasks(2, threads, [&](Eigen::Index c) {
+    parallel_tasks(2, threads, [&](Eigen::Index c) {
       const Eigen::Index nx = n[0], ny = n[1];
       Eigen::MatrixXd right(xs.size(), 2 * ny - 1);
       right << alpha.row(c).transpose().asDiagonal() * ecy.transpose(),

@@ -12,11 +12,11 @@
 #include <numeric>
 #include <sstream>
 #include <string>
-#include <thread>
 #include <utility>
 #include <vector>
 
 #include "floorgrid/core/error.hpp"
+#include "floorgrid/core/parallel.hpp"
 
 namespace floorgrid {
 namespace {
@@ -272,13 +272,11 @@ Eigen::Matrix2Xd ThinPlateSpline::evaluate_batch(
     }
   };
   // A second thread pays off from a few hundred thousand kernel terms.
-  if (threads >= 2 && m >= 2 && m * size() >= 200000) {
-    std::thread helper(run, m / 2, m);
-    run(0, m / 2);
-    helper.join();
-  } else {
-    run(0, m);
-  }
+  const bool parallel = m >= 2 && m * size() >= 200000;
+  parallel_blocks(static_cast<std::size_t>(m), parallel ? threads : 1,
+                  [&](std::size_t first, std::size_t last) {
+                    run(static_cast<Eigen::Index>(first), static_cast<Eigen::Index>(last));
+                  });
   return out;
 }
 

@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
-#include <thread>
 #include <utility>
 
 #include "floorgrid/core/error.hpp"
+#include "floorgrid/core/parallel.hpp"
 
 namespace floorgrid {
 namespace {
@@ -71,13 +71,10 @@ ThinPlateSplineLattice::ThinPlateSplineLattice(ThinPlateSpline spline,
       }
     }
   };
-  if (options.threads >= 2 && rows_ >= 4) {
-    std::thread helper(fill_rows, rows_ / 2, rows_);
-    fill_rows(0, rows_ / 2);
-    helper.join();
-  } else {
-    fill_rows(0, rows_);
-  }
+  parallel_blocks(static_cast<std::size_t>(rows_), rows_ >= 4 ? options.threads : 1,
+                  [&](std::size_t first, std::size_t last) {
+                    fill_rows(static_cast<Eigen::Index>(first), static_cast<Eigen::Index>(last));
+                  });
 }
 
 bool ThinPlateSplineLattice::contains(const Eigen::Vector2d& point_in_plan) const {
@@ -130,13 +127,10 @@ Eigen::Matrix2Xd ThinPlateSplineLattice::evaluate_batch(
     for (Eigen::Index k = first; k < last; ++k)
       out.col(k) = evaluate(points_in_plan.col(k));
   };
-  if (threads >= 2 && m >= 100000) {
-    std::thread helper(run, m / 2, m);
-    run(0, m / 2);
-    helper.join();
-  } else {
-    run(0, m);
-  }
+  parallel_blocks(static_cast<std::size_t>(m), m >= 100000 ? threads : 1,
+                  [&](std::size_t first, std::size_t last) {
+                    run(static_cast<Eigen::Index>(first), static_cast<Eigen::Index>(last));
+                  });
   return out;
 }
 
