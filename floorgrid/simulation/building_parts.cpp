@@ -293,4 +293,34 @@ void finish_walls(Building& b, const std::vector<Eigen::AlignedBox2d>& openings)
     add_box_outline(b.racks, r, SurfaceKind::rack);
 }
 
+void furnish_building(Building& b, const CorridorFurnishing& corridors, Random& random) {
+  std::vector<Eigen::AlignedBox2d> zones;
+  for (const Room& room : b.rooms)
+    zones.push_back(door_zone(room.doors.front()));
+  std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> tour_pieces;
+  for (std::size_t i = 1; i < b.tour.size(); ++i)
+    tour_pieces.emplace_back(b.tour[i - 1], b.tour[i]);
+  for (const Room& room : b.rooms) {
+    FurnitureRequest request;
+    request.area = room.interior;
+    request.keep_free = room_visit_path(room, room.doors.front());
+    request.forbidden = zones;
+    request.wall_density = 0.35;
+    request.free_standing = 2;
+    furnish(b, request, random);
+  }
+  for (const auto& corridor : b.corridors) {
+    FurnitureRequest request;
+    request.area = corridor;
+    request.keep_free = tour_pieces;
+    request.forbidden = zones;
+    request.forbidden.insert(request.forbidden.end(), corridors.forbidden.begin(),
+                             corridors.forbidden.end());
+    request.clearance = corridors.clearance;
+    request.wall_density = corridors.wall_density;
+    request.free_standing = corridors.free_standing;
+    furnish(b, request, random);
+  }
+}
+
 }  // namespace floorgrid::building_parts

@@ -49,6 +49,17 @@ struct FurnitureRequest {
 };
 void furnish(Building& b, const FurnitureRequest& request, Random& random);
 
+/// How a whole building is furnished: every room lined at 35% with two free-standing pieces,
+/// its visit path and every door zone kept free; the corridors (aisles) as given here.
+struct CorridorFurnishing {
+  double clearance = 0.6;                      ///< metres from the tour
+  double wall_density = 0.5;                   ///< fraction of the walls lined
+  int free_standing = 2;                       ///< pieces to try per corridor
+  std::vector<Eigen::AlignedBox2d> forbidden;  ///< besides the door zones (rack footprints)
+};
+/// Furnishes every room, then every corridor of `b`, keeping the tour and the doors free.
+void furnish_building(Building& b, const CorridorFurnishing& corridors, Random& random);
+
 /// Distance from a box to a segment, metres (0 when they touch or overlap).
 double box_segment_distance(const Eigen::AlignedBox2d& box, const Eigen::Vector2d& a,
                             const Eigen::Vector2d& c);

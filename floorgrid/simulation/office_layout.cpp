@@ -175,31 +175,8 @@ Building make_office(Random& random) {
   }
 
   // Furniture: rooms lined with cabinets and desks, a few pieces in the corridors.
-  std::vector<Eigen::AlignedBox2d> zones;
-  for (const Room& room : b.rooms)
-    zones.push_back(building_parts::door_zone(room.doors.front()));
-  std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> tour_pieces;
-  for (std::size_t i = 1; i < b.tour.size(); ++i)
-    tour_pieces.emplace_back(b.tour[i - 1], b.tour[i]);
-  for (const Room& room : b.rooms) {
-    building_parts::FurnitureRequest request;
-    request.area = room.interior;
-    request.keep_free = building_parts::room_visit_path(room, room.doors.front());
-    request.forbidden = zones;
-    request.wall_density = 0.35;
-    request.free_standing = 2;
-    building_parts::furnish(b, request, random);
-  }
-  for (const auto& corridor : b.corridors) {
-    building_parts::FurnitureRequest request;
-    request.area = corridor;
-    request.keep_free = tour_pieces;
-    request.forbidden = zones;
-    request.clearance = 0.55;
-    request.wall_density = 0.15;
-    request.free_standing = 1;
-    building_parts::furnish(b, request, random);
-  }
+  building_parts::furnish_building(
+      b, {.clearance = 0.55, .wall_density = 0.15, .free_standing = 1, .forbidden = {}}, random);
   return b;
 }
 

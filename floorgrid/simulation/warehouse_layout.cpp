@@ -99,33 +99,9 @@ Building make_warehouse(Random& random) {
   b.corridors.push_back(box(x_r1, main_y1, length - te, y_top));  // east transverse aisle
 
   // Furniture: pallets staged along the rack faces and walls, desks in the offices.
-  std::vector<Eigen::AlignedBox2d> zones;
-  for (const Room& room : b.rooms)
-    zones.push_back(building_parts::door_zone(room.doors.front()));
-  std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> tour_pieces;
-  for (std::size_t i = 1; i < b.tour.size(); ++i)
-    tour_pieces.emplace_back(b.tour[i - 1], b.tour[i]);
-  for (const Room& room : b.rooms) {
-    building_parts::FurnitureRequest request;
-    request.area = room.interior;
-    request.keep_free = building_parts::room_visit_path(room, room.doors.front());
-    request.forbidden = zones;
-    request.wall_density = 0.35;
-    request.free_standing = 2;
-    building_parts::furnish(b, request, random);
-  }
-  for (const auto& area : b.corridors) {
-    building_parts::FurnitureRequest request;
-    request.area = area;
-    request.keep_free = tour_pieces;
-    request.forbidden = zones;
-    for (const auto& r : b.rack_boxes)
-      request.forbidden.push_back(r);
-    request.clearance = 0.9;
-    request.wall_density = 0.3;
-    request.free_standing = 3;
-    building_parts::furnish(b, request, random);
-  }
+  building_parts::furnish_building(
+      b, {.clearance = 0.9, .wall_density = 0.3, .free_standing = 3, .forbidden = b.rack_boxes},
+      random);
   return b;
 }
 
