@@ -13,6 +13,15 @@ namespace floorgrid {
 /// targets has two cores; more are used only when asked).
 inline constexpr int kDefaultThreads = 2;
 
+/// The threads worth starting for `work` units of which each thread should get at least
+/// `min_per_thread` (a thread start costs ~20 us): at most `threads`, at least 1.
+inline int threads_for(std::size_t work, std::size_t min_per_thread, int threads) {
+  const std::size_t worth =
+      std::max<std::size_t>(1, work / std::max<std::size_t>(min_per_thread, 1));
+  return static_cast<int>(
+      std::min<std::size_t>(static_cast<std::size_t>(std::max(threads, 1)), worth));
+}
+
 /// Runs work(task) for every task in [0, tasks) on up to `threads` threads: the caller's and
 /// threads - 1 more, task t, t + used, t + 2 used, ... on thread t. How work is split into
 /// tasks is the caller's and must not depend on `threads`, so that results do not either. A

@@ -184,9 +184,7 @@ void BeamModel::log_likelihood(const ScanObservation& scan, const ParticleSet& p
       out[i] = options_.beam_weight * sum;
     }
   };
-  const std::size_t max_threads = std::max<std::size_t>(1, n * beams / kMinBeamsPerThread);
-  const int used = static_cast<int>(std::min<std::size_t>(std::max(threads, 1), max_threads));
-  parallel_blocks(n, used, score_block);
+  parallel_blocks(n, threads_for(n * beams, kMinBeamsPerThread, threads), score_block);
 }
 
 double BeamModel::mean_beam_likelihood(const ScanObservation& scan, const Pose2& pose,

@@ -166,9 +166,7 @@ void LikelihoodFieldModel::log_likelihood(const ScanObservation& scan, const Par
 #endif
     }
   };
-  const std::size_t max_threads = std::max<std::size_t>(1, n * beams / kMinEvaluationsPerThread);
-  const int used = static_cast<int>(std::min<std::size_t>(std::max(threads, 1), max_threads));
-  parallel_blocks(n, used, score_block);
+  parallel_blocks(n, threads_for(n * beams, kMinEvaluationsPerThread, threads), score_block);
 }
 
 double LikelihoodFieldModel::mean_beam_likelihood(const ScanObservation& scan, const Pose2& pose,
