@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "floorgrid/localization/likelihood_field_model.hpp"
-#include "tests/pipeline/pipeline_test_support.hpp"
+#include "tests/support/simulated_room.hpp"
 
 namespace floorgrid {
 namespace {

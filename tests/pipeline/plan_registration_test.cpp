@@ -5,8 +5,8 @@
 #include <cmath>
 
 #include "floorgrid/localization/likelihood_field_model.hpp"
-#include "tests/pipeline/pipeline_test_support.hpp"
 #include "tests/support/expect_error.hpp"
+#include "tests/support/simulated_room.hpp"
 
 namespace floorgrid {
 namespace {
