@@ -100,7 +100,7 @@ PlanRegistration register_whole_map(const io::LoadedDataset& d) {
   PlanRegistrationOptions ro;
   ro.seeding.position_step = 0.5;
   const PlanRegistrationResult result =
-      register_on_plan(d.plan_grid, model, cloud, centre, ScaleRange{0.8, 1.3}, 1.0, ro);
+      register_on_plan(d.plan_grid, model, cloud, centre, ScaleRange{.min = 0.8, .max = 1.3}, 1.0, ro);
   return result.registration;
 }
 

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "floorgrid/core/parallel.hpp"
 #include "floorgrid/geometry/reference_pairs.hpp"
 #include "floorgrid/geometry/transform_estimation.hpp"
 
@@ -33,7 +34,7 @@ struct RansacOptions {
   double min_sample_separation = 0.02;
   /// Threads of the passes over all pairs: 1 or 2 (the second only from 2^18 pairs on); the
   /// result does not depend on it.
-  int threads = 2;
+  int threads = kDefaultThreads;
 };
 
 /// The outcome of ransac_transform.

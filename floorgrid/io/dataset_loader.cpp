@@ -131,7 +131,8 @@ LoadedDataset load_dataset(const std::filesystem::path& path, const PlanRasterOp
     RobotLog log = read_carmen(*m.log, options);
     if (m.odometry_noise) {
       const auto& a = *m.odometry_noise;
-      log = add_odometry_noise(log, MotionNoise{a[0], a[1], a[2], a[3]}, m.odometry_noise_seed);
+      const MotionNoise noise{.alpha1 = a[0], .alpha2 = a[1], .alpha3 = a[2], .alpha4 = a[3]};
+      log = add_odometry_noise(log, noise, m.odometry_noise_seed);
     }
     d.log = std::move(log);
   }

@@ -2,6 +2,7 @@
 
 #include <vector>
 
+#include "floorgrid/core/parallel.hpp"
 #include "floorgrid/localization/observation_model.hpp"
 #include "floorgrid/localization/ray_marching.hpp"
 #include "floorgrid/maps/occupancy_grid.hpp"
@@ -73,7 +74,7 @@ class BeamModel : public ObservationModel {
   /// is bit-identical for any `threads`. An empty scan gives 0 for every particle. Throws
   /// InputError when neither the options nor the scan give a max range.
   void log_likelihood(const ScanObservation& scan, const ParticleSet& particles,
-                      std::vector<double>& out, int threads = 2) const override;
+                      std::vector<double>& out, int threads = kDefaultThreads) const override;
 
   /// Mean over the scan's beams of exp(-(z - z_exp)^2 / (2 sigma_hit^2)) at `pose` (the hit
   /// part without normalization or weight), in [0, 1]; 0 for an empty scan.

@@ -25,14 +25,14 @@ void validate(const ConvergenceOptions& o) {
 }
 
 ConvergenceCheck check_convergence(const PoseEstimate& estimate, double mean_beam_likelihood,
-                                   bool has_scale, const ConvergenceOptions& o) {
+                                   bool has_scale, const ConvergenceOptions& options) {
   ConvergenceCheck c;
   // Written as "within" tests so that NaN fails them.
-  c.position_ok = estimate.position_std <= o.max_position_std;
-  c.heading_ok = estimate.heading_std <= o.max_heading_std;
-  c.scale_ok = !has_scale || estimate.scale_std <= o.max_scale_std;
-  c.ess_ok = estimate.ess_ratio >= o.min_ess_ratio;
-  c.beam_ok = mean_beam_likelihood >= o.min_beam_likelihood;
+  c.position_ok = estimate.position_std <= options.max_position_std;
+  c.heading_ok = estimate.heading_std <= options.max_heading_std;
+  c.scale_ok = !has_scale || estimate.scale_std <= options.max_scale_std;
+  c.ess_ok = estimate.ess_ratio >= options.min_ess_ratio;
+  c.beam_ok = mean_beam_likelihood >= options.min_beam_likelihood;
   c.criteria_met = c.position_ok && c.heading_ok && c.scale_ok && c.ess_ok && c.beam_ok;
   return c;
 }

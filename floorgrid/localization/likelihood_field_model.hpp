@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "floorgrid/core/parallel.hpp"
 #include "floorgrid/localization/observation_model.hpp"
 #include "floorgrid/maps/distance_field.hpp"
 #include "floorgrid/maps/occupancy_grid.hpp"
@@ -72,7 +73,7 @@ class LikelihoodFieldModel : public ObservationModel {
   /// thread; each particle's value is computed alone, so the result is bit-identical for any
   /// `threads`. An empty scan gives 0 for every particle.
   void log_likelihood(const ScanObservation& scan, const ParticleSet& particles,
-                      std::vector<double>& out, int threads = 2) const override;
+                      std::vector<double>& out, int threads = kDefaultThreads) const override;
 
   /// Mean over the scan's known endpoints (see known_margin) of exp(-d^2 / (2 sigma_hit^2)) at
   /// `pose` (the Gaussian part without weight or floor), in [0, 1]; NaN when fewer than

@@ -2,6 +2,7 @@
 
 #include <vector>
 
+#include "floorgrid/core/parallel.hpp"
 #include "floorgrid/localization/particles.hpp"
 #include "floorgrid/localization/scan_observation.hpp"
 
@@ -15,7 +16,7 @@ class ObservationModel {
   /// The log-likelihood of `scan` for every particle, written to `out` (resized), summed over
   /// the scan's beams; uses at most `threads` threads (the result does not depend on it).
   virtual void log_likelihood(const ScanObservation& scan, const ParticleSet& particles,
-                              std::vector<double>& out, int threads = 2) const = 0;
+                              std::vector<double>& out, int threads = kDefaultThreads) const = 0;
 
   /// The mean over the scan's beams of each beam's likelihood at one pose, in [0, 1]: the
   /// share of the scan the map explains there (1: every endpoint exactly on a wall). Used by

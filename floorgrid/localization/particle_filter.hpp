@@ -7,6 +7,7 @@
 #include <string_view>
 #include <vector>
 
+#include "floorgrid/core/parallel.hpp"
 #include "floorgrid/core/random.hpp"
 #include "floorgrid/localization/convergence.hpp"
 #include "floorgrid/localization/divergence.hpp"
@@ -138,7 +139,7 @@ class ParticleFilter {
   HypothesisSeeding initialize_from_hypotheses(
       const OccupancyGrid& free_space, const ScanObservation& first_scan,
       const ObservationModel& model, const std::optional<ScaleRange>& scales = std::nullopt,
-      int threads = 2);
+      int threads = kDefaultThreads);
 
   /// The motion step alone (predict_particles with the filter's noise, scale walk and random
   /// source); also carries the anchor along.
@@ -150,13 +151,14 @@ class ParticleFilter {
   void shift(const Pose2& from, const Pose2& to);
   /// The measurement step alone (update_weights with `model`'s log-likelihoods); returns
   /// update_weights' result. step() is predict, update, then the assessment and resampling.
-  bool update(const ScanObservation& scan, const ObservationModel& model, int threads = 2);
+  bool update(const ScanObservation& scan, const ObservationModel& model,
+              int threads = kDefaultThreads);
   /// One full cycle for one scan: predict by `motion_in_world` (the odometry since the previous
   /// scan, world metres), update with `scan`, estimate, check convergence and divergence, move
   /// through the states, resample (when N_eff / N < resample_ess_ratio, when the particle count
   /// changes, or to inject particles) and inject. Throws std::logic_error when uninitialized.
   FilterStatus step(const OdometryMotion& motion_in_world, const ScanObservation& scan,
-                    const ObservationModel& model, int threads = 2);
+                    const ObservationModel& model, int threads = kDefaultThreads);
 
   /// The particles (after the last step's resampling).
   const ParticleSet& particles() const { return particles_; }

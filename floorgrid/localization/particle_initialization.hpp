@@ -6,6 +6,7 @@
 #include <optional>
 #include <vector>
 
+#include "floorgrid/core/parallel.hpp"
 #include "floorgrid/core/random.hpp"
 #include "floorgrid/geometry/pose2.hpp"
 #include "floorgrid/localization/observation_model.hpp"
@@ -142,6 +143,6 @@ HypothesisSeeding seed_best_hypotheses(const FreeSpaceSampler& free_space,
                                        const ScanObservation& scan, const ObservationModel& model,
                                        const HypothesisSeedingOptions& options,
                                        const std::optional<ScaleRange>& scale_range, Random& random,
-                                       int threads = 2);
+                                       int threads = kDefaultThreads);
 
 }  // namespace floorgrid

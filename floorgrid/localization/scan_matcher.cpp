@@ -87,7 +87,7 @@ void add_row(Linearization& l, const Eigen::Vector3d& j, double ju, double r, do
 }
 
 Linearization linearize(const WallField& walls, const ScanObservation& scan, const Pose2& pose,
-                        double u, double gate, const ScanMatchOptions& o) {
+                        double u, double gate, const ScanMatchOptions& options) {
   Linearization l;
   const Eigen::Matrix2d R = pose.rotation();
   const Eigen::Vector2d t = pose.translation();
@@ -109,17 +109,18 @@ Linearization linearize(const WallField& walls, const ScanObservation& scan, con
     const Eigen::Vector2d dp_dtheta(-u * v.y(), u * v.x());
     if (n.squaredNorm() > 0.5) {
       const double r = n.dot(err);
-      add_row(l, {n.x(), n.y(), n.dot(dp_dtheta)}, n.dot(v), r, robust_weight(r, o.robust_scale));
-      if (std::abs(r) < o.inlier_distance) {
+      add_row(l, {n.x(), n.y(), n.dot(dp_dtheta)}, n.dot(v), r,
+              robust_weight(r, options.robust_scale));
+      if (std::abs(r) < options.inlier_distance) {
         ++l.inliers;
         l.inlier_square_sum += r * r;
         l.normals.noalias() += n * n.transpose();
       }
     } else {
-      const double w = robust_weight(distance, o.robust_scale);
+      const double w = robust_weight(distance, options.robust_scale);
       add_row(l, {1.0, 0.0, dp_dtheta.x()}, v.x(), err.x(), w);
       add_row(l, {0.0, 1.0, dp_dtheta.y()}, v.y(), err.y(), w);
-      if (distance < o.inlier_distance) {
+      if (distance < options.inlier_distance) {
         ++l.inliers;
         l.inlier_square_sum += distance * distance;
         l.normals += 0.5 * Eigen::Matrix2d::Identity();
@@ -138,8 +139,8 @@ Eigen::Vector3d solve_damped(const Eigen::Matrix3d& A, const Eigen::Vector3d& rh
 }
 
 /// The gate of iteration k: max_correspondence shrinking by 0.7 per iteration to the minimum.
-double gate_at(int k, const ScanMatchOptions& o) {
-  return std::max(o.min_correspondence, o.max_correspondence * std::pow(0.7, k));
+double gate_at(int k, const ScanMatchOptions& options) {
+  return std::max(options.min_correspondence, options.max_correspondence * std::pow(0.7, k));
 }
 
 Pose2 moved(const Pose2& pose, const Eigen::Vector3d& step) {
@@ -149,38 +150,39 @@ Pose2 moved(const Pose2& pose, const Eigen::Vector3d& step) {
 }  // namespace
 
 ScanMatch match_scan(const WallField& walls, const ScanObservation& scan, const Pose2& initial,
-                     double scale, const ScanMatchOptions& o) {
-  validate(o);
+                     double scale, const ScanMatchOptions& options) {
+  validate(options);
   if (!(scale > 0.0))
     throw InputError("must be > 0", {}, 0, "scan_match.scale");
   ScanMatch m;
   m.pose = initial;
   m.endpoints = scan.size();
   const double u = 1.0 / scale;
-  for (int k = 0; k < o.max_iterations; ++k) {
-    const double gate = gate_at(k, o);
-    const Linearization l = linearize(walls, scan, m.pose, u, gate, o);
+  for (int k = 0; k < options.max_iterations; ++k) {
+    const double gate = gate_at(k, options);
+    const Linearization l = linearize(walls, scan, m.pose, u, gate, options);
     m.iterations = k + 1;
     if (l.A.trace() <= 0.0)
       break;
     const Eigen::Vector3d step = solve_damped(l.A, -l.b);
     m.pose = moved(m.pose, step);
-    if (gate <= o.min_correspondence && step.head<2>().norm() < o.tolerance &&
-        std::abs(step.z()) < o.tolerance)
+    if (gate <= options.min_correspondence && step.head<2>().norm() < options.tolerance &&
+        std::abs(step.z()) < options.tolerance)
       break;
   }
-  const Linearization l = linearize(walls, scan, m.pose, u, o.min_correspondence, o);
+  const Linearization l = linearize(walls, scan, m.pose, u, options.min_correspondence, options);
   m.inliers = l.inliers;
   m.rms = l.inliers ? std::sqrt(l.inlier_square_sum / static_cast<double>(l.inliers)) : 0.0;
   std::tie(m.constraint, m.weak_direction) = l.constraint();
   const double fraction =
       m.endpoints ? static_cast<double>(m.inliers) / static_cast<double>(m.endpoints) : 0.0;
-  if (m.inliers < o.min_inliers || fraction < o.min_inlier_fraction) {
+  if (m.inliers < options.min_inliers || fraction < options.min_inlier_fraction) {
     m.failure = ScanMatchFailure::too_few_inliers;
-  } else if (m.constraint < o.min_constraint) {
+  } else if (m.constraint < options.min_constraint) {
     m.failure = ScanMatchFailure::degenerate;
-  } else if ((m.pose.translation() - initial.translation()).norm() > o.max_correction ||
-             std::abs(normalize_angle(m.pose.theta - initial.theta)) > o.max_heading_correction) {
+  } else if ((m.pose.translation() - initial.translation()).norm() > options.max_correction ||
+             std::abs(normalize_angle(m.pose.theta - initial.theta)) >
+                 options.max_heading_correction) {
     m.failure = ScanMatchFailure::too_far;
   }
   return m;
@@ -253,10 +255,10 @@ ScaleProfile profile_scale(const WallField& walls, std::span<const ScanObservati
 }
 
 ScaleFit fit_scale(const WallField& walls, std::span<const ScanObservation* const> scans,
-                   std::span<const Pose2> poses, double initial_scale, const ScanMatchOptions& o,
-                   int max_iterations, int jackknife_blocks, const GridRayCaster* caster,
-                   double tolerance) {
-  validate(o);
+                   std::span<const Pose2> poses, double initial_scale,
+                   const ScanMatchOptions& options, int max_iterations, int jackknife_blocks,
+                   const GridRayCaster* caster, double tolerance) {
+  validate(options);
   if (caster) {
     // The same fit on each scan's beams consistent with the walls at its initial pose.
     std::vector<ScanObservation> kept;
@@ -267,7 +269,7 @@ ScaleFit fit_scale(const WallField& walls, std::span<const ScanObservation* cons
     views.reserve(kept.size());
     for (const ScanObservation& k : kept)
       views.push_back(&k);
-    return fit_scale(walls, views, poses, initial_scale, o, max_iterations, jackknife_blocks);
+    return fit_scale(walls, views, poses, initial_scale, options, max_iterations, jackknife_blocks);
   }
   if (scans.size() != poses.size() || scans.empty())
     throw InputError("needs as many poses as scans, at least one", {}, 0, "scale_fit.scans");
@@ -279,7 +281,7 @@ ScaleFit fit_scale(const WallField& walls, std::span<const ScanObservation* cons
   std::vector<std::size_t> used;
   fit.poses.assign(poses.begin(), poses.end());
   for (std::size_t i = 0; i < scans.size(); ++i) {
-    const ScanMatch m = match_scan(walls, *scans[i], poses[i], initial_scale, o);
+    const ScanMatch m = match_scan(walls, *scans[i], poses[i], initial_scale, options);
     fit.poses[i] = m.pose;
     if (m.failure == ScanMatchFailure::none || m.failure == ScanMatchFailure::degenerate)
       used.push_back(i);
@@ -294,7 +296,8 @@ ScaleFit fit_scale(const WallField& walls, std::span<const ScanObservation* cons
   std::vector<Eigen::LDLT<Eigen::Matrix3d>> solvers(used.size());
   const auto linearize_all = [&] {
     for (std::size_t k = 0; k < used.size(); ++k) {
-      lin[k] = linearize(walls, *scans[used[k]], fit.poses[used[k]], u, o.min_correspondence, o);
+      lin[k] = linearize(walls, *scans[used[k]], fit.poses[used[k]], u, options.min_correspondence,
+                         options);
       const double damping = 1e-6 * std::max(lin[k].A.trace(), 1e-9);
       solvers[k].compute(lin[k].A + damping * Eigen::Matrix3d::Identity());
     }
@@ -316,7 +319,7 @@ ScaleFit fit_scale(const WallField& walls, std::span<const ScanObservation* cons
     }
     u += du;
     fit.iterations = it + 1;
-    if (largest < o.tolerance)
+    if (largest < options.tolerance)
       break;
   }
   // Jackknife at the solution: leaving block B out moves u by -(G - g_B) / (S - S_B).

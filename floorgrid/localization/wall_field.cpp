@@ -24,11 +24,12 @@ namespace {
 
 /// The wall's normal at occupied cell (ix, iy): the direction of least scatter of the occupied
 /// cells around it, when that scatter is clearly smaller than the other (a line, not a blob).
-Eigen::Vector2f wall_normal(const OccupancyGrid& grid, int ix, int iy, const WallFieldOptions& o) {
+Eigen::Vector2f wall_normal(const OccupancyGrid& grid, int ix, int iy,
+                            const WallFieldOptions& options) {
   Eigen::Vector2d sum = Eigen::Vector2d::Zero();
   Eigen::Matrix2d outer = Eigen::Matrix2d::Zero();
   int n = 0;
-  const int r = o.normal_radius;
+  const int r = options.normal_radius;
   for (int dy = -r; dy <= r; ++dy) {
     for (int dx = -r; dx <= r; ++dx) {
       if (dx * dx + dy * dy > r * r || !grid.is_occupied(ix + dx, iy + dy))
@@ -45,7 +46,7 @@ Eigen::Vector2f wall_normal(const OccupancyGrid& grid, int ix, int iy, const Wal
   const Eigen::Matrix2d scatter = outer / n - mean * mean.transpose();
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(scatter);
   const double small = eigen.eigenvalues()(0), large = eigen.eigenvalues()(1);
-  if (!(large > 0.0) || small > o.max_flatness * large)
+  if (!(large > 0.0) || small > options.max_flatness * large)
     return Eigen::Vector2f::Zero();
   // Cell axes are the grid's axes; the grid's yaw turns them into the map frame.
   const Eigen::Vector2d normal = grid.geometry().origin.rotation() * eigen.eigenvectors().col(0);

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "floorgrid/core/parallel.hpp"
 #include "floorgrid/mapping/gp_kernel.hpp"
 #include "floorgrid/mapping/gp_lattice.hpp"
 #include "floorgrid/mapping/gp_tuning.hpp"
@@ -14,8 +15,9 @@ namespace floorgrid {
 
 /// How a fitted GP predicts.
 struct GpPredictionOptions {
-  GpLatticeOptions lattice;  ///< the mean's lattice (fast, within lattice.tolerance metres)
-  int threads = 2;  ///< threads for batches and the lattice, 1 or 2; results do not depend on it
+  GpLatticeOptions lattice;       ///< the mean's lattice (fast, within lattice.tolerance metres)
+  int threads = kDefaultThreads;  ///< threads for batches and the lattice, 1 or 2; results do not
+                                  ///< depend on it
 };
 
 /// How fit_gaussian_process works.

@@ -53,23 +53,24 @@ Eigen::Vector2d centroid_of(const ReferencePairs& pairs, const std::vector<Eigen
 /// Algorithm 1, lines 1-16, for one cell: clusters grown around the best of several seeded
 /// minimal samples, each taking every remaining pair that agrees with it.
 void cluster_cell(const ReferencePairs& pairs, std::vector<Eigen::Index> remaining,
-                  const LocalTransformsOptions& o, Random& random, std::vector<Growing>& out) {
-  const int sample = minimal_sample_size(o.kind);
-  while (static_cast<int>(remaining.size()) >= std::max(sample, o.min_cluster_pairs)) {
+                  const LocalTransformsOptions& options, Random& random,
+                  std::vector<Growing>& out) {
+  const int sample = minimal_sample_size(options.kind);
+  while (static_cast<int>(remaining.size()) >= std::max(sample, options.min_cluster_pairs)) {
     std::vector<Eigen::Index> best;
     Eigen::Matrix3d best_T = Eigen::Matrix3d::Identity();
-    for (int h = 0; h < o.hypotheses; ++h) {
+    for (int h = 0; h < options.hypotheses; ++h) {
       std::vector<Eigen::Index> seed;
       for (int k = 0; k < sample; ++k) {
         seed.push_back(remaining[static_cast<std::size_t>(
             random.integer(0, static_cast<std::int64_t>(remaining.size()) - 1))]);
       }
-      const auto estimate = fit_members(pairs, seed, o.kind);
+      const auto estimate = fit_members(pairs, seed, options.kind);
       if (!estimate)
         continue;
       std::vector<Eigen::Index> agree;
       for (const Eigen::Index i : remaining) {
-        if (error(estimate->T_grid_plan, pairs, i) <= o.agreement)
+        if (error(estimate->T_grid_plan, pairs, i) <= options.agreement)
           agree.push_back(i);
       }
       if (agree.size() > best.size()) {
@@ -77,14 +78,14 @@ void cluster_cell(const ReferencePairs& pairs, std::vector<Eigen::Index> remaini
         best_T = estimate->T_grid_plan;
       }
     }
-    if (static_cast<int>(best.size()) < o.min_cluster_pairs)
+    if (static_cast<int>(best.size()) < options.min_cluster_pairs)
       break;
     // Refit on the members and take the pairs that agree with the refit.
-    if (const auto refit = fit_members(pairs, best, o.kind)) {
+    if (const auto refit = fit_members(pairs, best, options.kind)) {
       best_T = refit->T_grid_plan;
       std::vector<Eigen::Index> agree;
       for (const Eigen::Index i : remaining) {
-        if (error(best_T, pairs, i) <= o.agreement)
+        if (error(best_T, pairs, i) <= options.agreement)
           agree.push_back(i);
       }
       if (agree.size() >= best.size())

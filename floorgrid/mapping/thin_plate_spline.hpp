@@ -2,6 +2,8 @@
 
 #include <Eigen/Core>
 
+#include "floorgrid/core/parallel.hpp"
+
 namespace floorgrid {
 
 /// Options of ThinPlateSpline::fit.
@@ -69,7 +71,7 @@ class ThinPlateSpline {
   Eigen::Vector2d evaluate(const Eigen::Vector2d& point_in_plan) const;
   /// f at every column (2 x m in, 2 x m out), exactly: O(n m), split over `threads` (1 or 2).
   Eigen::Matrix2Xd evaluate_batch(const Eigen::Ref<const Eigen::Matrix2Xd>& points_in_plan,
-                                  int threads = 2) const;
+                                  int threads = kDefaultThreads) const;
   /// The analytic Jacobian J_grid_plan = df/dp at a plan point.
   Eigen::Matrix2d jacobian(const Eigen::Vector2d& point_in_plan) const;
   /// f, its Jacobian and its mixed derivative at a plan point, in one sum over the centres.

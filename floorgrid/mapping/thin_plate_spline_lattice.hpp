@@ -4,6 +4,7 @@
 #include <Eigen/Geometry>
 #include <vector>
 
+#include "floorgrid/core/parallel.hpp"
 #include "floorgrid/mapping/thin_plate_spline.hpp"
 
 namespace floorgrid {
@@ -16,8 +17,8 @@ struct ThinPlateSplineLatticeOptions {
   /// raw pairs with 2 cm noise, whose kernels bend sharply at close centres: 0.125 m brings
   /// that below 1 mm (or smooth with lambda > 0). Build cost grows as 1 / spacing^2.
   double spacing = 0.25;
-  double margin = 0.5;  ///< metres added around the box on every side
-  int threads = 2;      ///< threads building the nodes (1 or 2)
+  double margin = 0.5;            ///< metres added around the box on every side
+  int threads = kDefaultThreads;  ///< threads building the nodes (1 or 2)
 };
 
 /// A fast approximation of a ThinPlateSpline over a box: exact values, Jacobians and mixed
@@ -36,7 +37,7 @@ class ThinPlateSplineLattice {
   Eigen::Vector2d evaluate(const Eigen::Vector2d& point_in_plan) const;
   /// evaluate for every column, split over `threads` (1 or 2).
   Eigen::Matrix2Xd evaluate_batch(const Eigen::Ref<const Eigen::Matrix2Xd>& points_in_plan,
-                                  int threads = 2) const;
+                                  int threads = kDefaultThreads) const;
   /// The Jacobian of the interpolant inside the box (of the spline outside).
   Eigen::Matrix2d jacobian(const Eigen::Vector2d& point_in_plan) const;
 

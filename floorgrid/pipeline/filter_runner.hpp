@@ -4,6 +4,7 @@
 #include <optional>
 #include <vector>
 
+#include "floorgrid/core/parallel.hpp"
 #include "floorgrid/localization/particle_filter.hpp"
 #include "floorgrid/localization/scan_matcher.hpp"
 #include "floorgrid/localization/scan_observation.hpp"
@@ -30,7 +31,7 @@ struct FilterRunnerOptions {
   /// wall along them within this are matched (beam_consistent).
   double beam_tolerance = 0.5;
   ObservationOptions match_observation{180};  ///< beams per scan of the matching
-  int threads = 2;                            ///< threads of the observation model
+  int threads = kDefaultThreads;              ///< threads of the observation model
 };
 
 /// What one filter did on one scan.

@@ -6,6 +6,7 @@
 #include <span>
 #include <vector>
 
+#include "floorgrid/core/parallel.hpp"
 #include "floorgrid/geometry/pose2.hpp"
 #include "floorgrid/localization/observation_model.hpp"
 #include "floorgrid/localization/particle_initialization.hpp"
@@ -128,6 +129,7 @@ struct PlanRegistrationResult {
 PlanRegistrationResult register_on_plan(const OccupancyGrid& plan, const ObservationModel& model,
                                         const ScanObservation& submap, const Pose2& submap_origin,
                                         const std::optional<ScaleRange>& scales, double scale,
-                                        const PlanRegistrationOptions& options, int threads = 2);
+                                        const PlanRegistrationOptions& options,
+                                        int threads = kDefaultThreads);
 
 }  // namespace floorgrid

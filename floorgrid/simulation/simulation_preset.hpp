@@ -24,7 +24,7 @@ struct SimulationPreset {
   double laser_forward_offset = 0.15;       ///< metres, laser ahead of the robot's centre
   double scan_period = 0.2;                 ///< seconds between scans
   // The odometry (alpha1..alpha4).
-  MotionNoise odometry{0.05, 0.01, 0.02, 0.05};
+  MotionNoise odometry{.alpha1 = 0.05, .alpha2 = 0.01, .alpha3 = 0.02, .alpha4 = 0.05};
   // The gridmap's distortion.
   double bend_deviation = 0.2;         ///< metres: far end off the near end's rigid transform
   double max_bend_strain = 0.003;      ///< bound the bend must respect (checked)

@@ -239,7 +239,8 @@ TEST(MapIo, BadYamlIsRefusedNamingFileLineAndField) {
         {"'image'", "missing"});
   // An image name too long for the file system threw std::filesystem_error (found by fuzzing).
   check("long_name.yaml",
-        "image: " + std::string(5000, 'x') + "\nresolution: 0.1\norigin: [0,0,0]\n",
+        "image: " + std::string(5000, 'x') +
+            "\nresolution: 0.1\norigin: [0,0,0]\noccupied_thresh: 0.65\nfree_thresh: 0.2\n",
         {"'image'", "does not exist"});
   check("no_res.yaml", "image: ok.pgm\norigin: [0,0,0]\noccupied_thresh: 0.65\nfree_thresh: 0.2\n",
         {"'resolution'", "missing"});
