@@ -103,21 +103,9 @@ ScoringSet make_scoring_set(const ReferencePairs& pairs, const std::vector<Eigen
 }
 
 ReferencePairs gather_pairs(const ReferencePairs& pairs, const std::vector<Eigen::Index>& indices) {
-  ReferencePairs out;
-  const auto m = static_cast<Eigen::Index>(indices.size());
-  out.points_in_plan.resize(2, m);
-  out.points_in_grid.resize(2, m);
-  if (pairs.has_weights())
-    out.weights.resize(m);
-  for (Eigen::Index k = 0; k < m; ++k) {
-    const Eigen::Index i = indices[static_cast<std::size_t>(k)];
+  for (const Eigen::Index i : indices)
     validate_pair(pairs, i);  // here, where the pair's own index is known
-    out.points_in_plan.col(k) = pairs.points_in_plan.col(i);
-    out.points_in_grid.col(k) = pairs.points_in_grid.col(i);
-    if (pairs.has_weights())
-      out.weights[k] = pairs.weights[i];
-  }
-  return out;
+  return select_pairs(pairs, indices);
 }
 
 // T expressed about the origins: q - o_G = L (p - o_F) + t'.

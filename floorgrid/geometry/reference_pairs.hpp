@@ -1,6 +1,8 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstddef>
+#include <vector>
 
 namespace floorgrid {
 
@@ -25,5 +27,24 @@ struct ReferencePairs {
   /// Whether per-pair weights are present.
   bool has_weights() const { return weights.size() != 0; }
 };
+
+/// The pairs at the given indices (in their order; an index may repeat), with their weights.
+inline ReferencePairs select_pairs(const ReferencePairs& pairs,
+                                   const std::vector<Eigen::Index>& indices) {
+  ReferencePairs out;
+  const auto n = static_cast<Eigen::Index>(indices.size());
+  out.points_in_plan.resize(2, n);
+  out.points_in_grid.resize(2, n);
+  if (pairs.has_weights())
+    out.weights.resize(n);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const Eigen::Index i = indices[static_cast<std::size_t>(k)];
+    out.points_in_plan.col(k) = pairs.points_in_plan.col(i);
+    out.points_in_grid.col(k) = pairs.points_in_grid.col(i);
+    if (pairs.has_weights())
+      out.weights[k] = pairs.weights[i];
+  }
+  return out;
+}
 
 }  // namespace floorgrid

@@ -4,16 +4,11 @@
 #include <cmath>
 #include <numbers>
 
+#include "floorgrid/core/overloaded.hpp"
+
 namespace floorgrid::io {
 
 namespace {
-
-template <class... Ts>
-struct Overloaded : Ts... {
-  using Ts::operator()...;
-};
-template <class... Ts>
-Overloaded(Ts...) -> Overloaded<Ts...>;
 
 void add_polyline(VectorFloorplan& plan, const std::vector<Eigen::Vector2d>& points, double k,
                   const std::string& layer) {

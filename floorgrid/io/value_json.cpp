@@ -4,17 +4,11 @@
 #include <variant>
 
 #include "floorgrid/core/error.hpp"
+#include "floorgrid/core/overloaded.hpp"
 
 namespace floorgrid::io {
 
 namespace {
-
-template <class... Ts>
-struct Overloaded : Ts... {
-  using Ts::operator()...;
-};
-template <class... Ts>
-Overloaded(Ts...) -> Overloaded<Ts...>;
 
 long line_at(const std::string& text, std::size_t offset) {
   offset = std::min(offset, text.size());

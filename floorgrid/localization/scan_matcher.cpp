@@ -201,11 +201,7 @@ ScanObservation beam_consistent(const ScanObservation& scan, const GridRayCaster
     const double expected = walls.cast(origin, pose.theta + scan.angle[j], max_range);
     if (std::abs(range - expected) > tolerance)
       continue;
-    kept.angle.push_back(scan.angle[j]);
-    kept.range.push_back(scan.range[j]);
-    kept.end_x.push_back(scan.end_x[j]);
-    kept.end_y.push_back(scan.end_y[j]);
-    kept.beam.push_back(scan.beam[j]);
+    kept.push_back_beam(scan, j);
   }
   return kept;
 }

@@ -25,6 +25,14 @@ struct ScanObservation {
 
   /// Number of beams kept.
   std::size_t size() const { return range.size(); }
+  /// Appends beam j of `other` (its angle, range, endpoint and index).
+  void push_back_beam(const ScanObservation& other, std::size_t j) {
+    angle.push_back(other.angle[j]);
+    range.push_back(other.range[j]);
+    end_x.push_back(other.end_x[j]);
+    end_y.push_back(other.end_y[j]);
+    beam.push_back(other.beam[j]);
+  }
 };
 
 /// How a scan becomes an observation.

@@ -38,23 +38,6 @@ void validate_pairs(const ReferencePairs& pairs) {
     throw InputError("every weight is 0: no pair would count", {}, 0, "pairs");
 }
 
-ReferencePairs select_pairs(const ReferencePairs& pairs, const std::vector<Eigen::Index>& indices) {
-  ReferencePairs out;
-  const auto n = static_cast<Eigen::Index>(indices.size());
-  out.points_in_plan.resize(2, n);
-  out.points_in_grid.resize(2, n);
-  if (pairs.has_weights())
-    out.weights.resize(n);
-  for (Eigen::Index k = 0; k < n; ++k) {
-    const Eigen::Index i = indices[static_cast<std::size_t>(k)];
-    out.points_in_plan.col(k) = pairs.points_in_plan.col(i);
-    out.points_in_grid.col(k) = pairs.points_in_grid.col(i);
-    if (pairs.has_weights())
-      out.weights[k] = pairs.weights[i];
-  }
-  return out;
-}
-
 ReferencePairs merge_duplicates(const ReferencePairs& pairs, DuplicateMerge* report) {
   // Sort indices by plan point; equal plan points become neighbours.
   const Eigen::Index n = pairs.size();

@@ -45,9 +45,6 @@ struct ReductionSummary {
 ReferencePairs reduce_pairs(const ReferencePairs& pairs, const ReductionOptions& options,
                             ReductionSummary* summary = nullptr);
 
-/// The pairs at the given indices.
-ReferencePairs select_pairs(const ReferencePairs& pairs, const std::vector<Eigen::Index>& indices);
-
 /// Axis-aligned extent of the plan points: the length of the bounds' diagonal, metres.
 double plan_extent(const ReferencePairs& pairs);
 

@@ -115,11 +115,7 @@ ScanObservation thin(const ScanObservation& cloud, std::size_t points) {
   const std::size_t keep = std::min(cloud.size(), std::max<std::size_t>(1, points));
   for (std::size_t k = 0; k < keep; ++k) {
     const std::size_t j = k * cloud.size() / keep;
-    thinned.angle.push_back(cloud.angle[j]);
-    thinned.range.push_back(cloud.range[j]);
-    thinned.end_x.push_back(cloud.end_x[j]);
-    thinned.end_y.push_back(cloud.end_y[j]);
-    thinned.beam.push_back(cloud.beam[j]);
+    thinned.push_back_beam(cloud, j);
   }
   return thinned;
 }
