@@ -6,6 +6,7 @@
 #include "apps/floorgrid/cli_util.hpp"
 #include "apps/floorgrid/commands.hpp"
 #include "floorgrid/core/error.hpp"
+#include "floorgrid/geometry/reference_pairs.hpp"
 #include "floorgrid/io/atomic_file.hpp"
 #include "floorgrid/io/model_io.hpp"
 #include "floorgrid/io/pairs_csv.hpp"
@@ -93,6 +94,14 @@ void add_fit_command(CLI::App& root) {
                        "--budget");
     if (!(args->memory_limit_gb > 0.0 && args->memory_limit_gb < 1e6))
       throw InputError("must be a positive number of GiB", {}, 0, "--memory-limit");
+    const double extrapolation = args->options.common.extrapolation_distance;
+    if (!(extrapolation >= 0.0 && extrapolation <= kMaxCoordinate))
+      throw InputError(fmt::format("must be a distance in [0, 1e7] metres (got {})", extrapolation),
+                       {}, 0, "--extrapolation");
+    const double threshold = args->options.ransac.inlier_threshold;
+    if (!(threshold > 0.0 && threshold <= kMaxCoordinate))
+      throw InputError(fmt::format("must be a distance in (0, 1e7] metres (got {})", threshold), {},
+                       0, "--inlier-threshold");
     args->options.common.reduction.budget = static_cast<std::size_t>(args->budget);
     refuse_overwriting_input(args->pairs, args->out, "--out");
     ReferencePairs pairs = io::read_pairs_csv(args->pairs, args->unit);

@@ -171,7 +171,9 @@ TEST(FitAndMapCommands, BadOptionsAndNonPhysicalInputAreRefused) {
   // pairs needs about 127 kB: over a limit of 1 kB).
   expect_refused("fit --model tps --memory-limit 0.000001" + pairs + out,
                  {"'--budget'", "with 60 of the pairs", "more than the limit"});
-  expect_refused("fit --model gt --extrapolation nan" + pairs + out, {"extrapolation"});
+  expect_refused("fit --model gt --extrapolation nan" + pairs + out, {"'--extrapolation'", "nan"});
+  expect_refused("fit --model gt --inlier-threshold -1" + pairs + out,
+                 {"'--inlier-threshold'", "-1"});
   // The output would overwrite the input.
   expect_refused("fit --model gt" + pairs + " --out " + quoted(dir / "." / "pairs.csv"),
                  {"'--out'", "also the input"});
