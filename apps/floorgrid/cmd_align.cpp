@@ -17,7 +17,7 @@
 namespace floorgrid::app {
 
 void run_align(const std::string& dataset, const std::string& out, const JobOptions& options) {
-  io::prepare_output_folder(out);
+  const io::OutputFolder out_folder(out);
   const auto load_start = std::chrono::steady_clock::now();
   const io::LoadedDataset d = io::load_dataset(dataset, options.raster, options.limits);
   for (const std::string& w : d.warnings)

@@ -26,7 +26,7 @@ void add_demo_command(CLI::App& root) {
   cmd->callback([args] {
     simulation_preset(args->preset);  // a bad preset fails before any work
     const std::filesystem::path out(args->out);
-    io::prepare_output_folder(out);
+    const io::OutputFolder out_folder(out);
     fmt::print("simulating {} (seed {}) into {}\n", args->preset, args->seed,
                (out / "dataset").string());
     const SimulatedDataset d = simulate(args->preset, args->seed);

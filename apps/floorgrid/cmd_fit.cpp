@@ -106,9 +106,8 @@ void add_fit_command(CLI::App& root) {
     refuse_overwriting_input(args->pairs, args->out, "--out");
     ReferencePairs pairs = io::read_pairs_csv(args->pairs, args->unit);
     check_fit_memory(args->options, static_cast<std::size_t>(pairs.size()), args->memory_limit_gb);
-    io::prepare_output_folder(std::filesystem::path(args->out).parent_path().empty()
-                                  ? std::filesystem::path(".")
-                                  : std::filesystem::path(args->out).parent_path());
+    const std::filesystem::path folder = std::filesystem::path(args->out).parent_path();
+    const io::OutputFolder out_folder(folder.empty() ? std::filesystem::path(".") : folder);
     auto model = make_mapping(args->options);
     model->set_unit(args->unit);
     const FitSummary s = with_file(args->pairs, [&] { return model->fit(pairs); });

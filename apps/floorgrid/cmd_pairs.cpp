@@ -30,7 +30,7 @@ void add_pairs_command(CLI::App& root) {
   cmd->callback([args, job] {
     const JobOptions options = job_options(*job);
     const std::filesystem::path out(args->out);
-    io::prepare_output_folder(out.parent_path().empty() ? "." : out.parent_path());
+    const io::OutputFolder out_folder(out.parent_path().empty() ? "." : out.parent_path());
     const io::LoadedDataset d = io::load_dataset(args->dataset, options.raster, options.limits);
     for (const std::string& w : d.warnings)
       spdlog::warn("{}", w);

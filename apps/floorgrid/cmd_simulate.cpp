@@ -34,7 +34,7 @@ void add_simulate_command(CLI::App& root) {
     const auto start = std::chrono::steady_clock::now();
     // Fail on a bad preset or an unusable folder before the work, not after.
     simulation_preset(args->preset);
-    io::prepare_output_folder(args->out);
+    const io::OutputFolder out_folder(args->out);
     spdlog::info("simulating preset {} seed {}", args->preset, args->seed);
     const SimulatedDataset d = simulate(args->preset, args->seed);
     const auto files = io::write_simulated_dataset(d, args->out, args->preview);

@@ -8,6 +8,7 @@
 #include <cerrno>
 #include <cstring>
 #include <sstream>
+#include <utility>
 
 #include "floorgrid/core/error.hpp"
 
@@ -117,13 +118,24 @@ void write_file_atomically(const std::filesystem::path& path, const std::string&
   file.commit();
 }
 
-void prepare_output_folder(const std::filesystem::path& folder) {
+bool prepare_output_folder(const std::filesystem::path& folder) {
   std::error_code ec;
+  const bool existed = std::filesystem::exists(folder, ec);
   std::filesystem::create_directories(folder, ec);
   if (ec || !std::filesystem::is_directory(folder, ec)) {
     throw InputError("cannot create the output folder" + (ec ? ": " + ec.message() : std::string()),
                      folder.string());
   }
+  return !existed;
+}
+
+OutputFolder::OutputFolder(std::filesystem::path folder)
+    : folder_(std::move(folder)), created_(prepare_output_folder(folder_)) {}
+
+OutputFolder::~OutputFolder() {
+  std::error_code ec;
+  if (created_ && std::filesystem::is_empty(folder_, ec) && !ec)
+    std::filesystem::remove(folder_, ec);  // only an empty folder: the job wrote nothing
 }
 
 std::string read_whole_file(const std::filesystem::path& path) {

@@ -39,8 +39,23 @@ void remove_temporaries_on_signals();
 void write_file_atomically(const std::filesystem::path& path, const std::string& bytes);
 
 /// Creates `folder` (and its parents) when missing; throws InputError naming it when it cannot be
-/// created or is not a folder.
-void prepare_output_folder(const std::filesystem::path& folder);
+/// created or is not a folder. Returns whether the folder itself was created.
+bool prepare_output_folder(const std::filesystem::path& folder);
+
+/// The output folder of a command, made before the work starts (so a folder that cannot be made
+/// fails at once, not after the job): when the command fails before writing anything into a
+/// folder this made, the guard removes it again, so bad input leaves nothing behind.
+class OutputFolder {
+ public:
+  explicit OutputFolder(std::filesystem::path folder);
+  ~OutputFolder();
+  OutputFolder(const OutputFolder&) = delete;
+  OutputFolder& operator=(const OutputFolder&) = delete;
+
+ private:
+  std::filesystem::path folder_;
+  bool created_ = false;
+};
 
 /// Reads a whole file as bytes; throws InputError naming the file when it cannot be read.
 std::string read_whole_file(const std::filesystem::path& path);
