@@ -134,9 +134,9 @@ TEST(AlignCommand, BadInputExitsWithTwoAndWritesNothing) {
   EXPECT_FALSE(fs::exists(dir / "out")) << "the output folder made for a failed job stays";
   // An output folder that was there before stays, even empty.
   fs::create_directories(dir / "kept");
-  EXPECT_EQ(run_floorgrid("align " + quoted(dir / "nothing") + " --out " + quoted(dir / "kept"))
-                .status,
-            2);
+  EXPECT_EQ(
+      run_floorgrid("align " + quoted(dir / "nothing") + " --out " + quoted(dir / "kept")).status,
+      2);
   EXPECT_TRUE(fs::is_directory(dir / "kept"));
   // A dataset without a log cannot make pairs: the message names the key.
   const auto sim = run_floorgrid("simulate --preset office --seed 2 --out " + quoted(dir / "data"));
