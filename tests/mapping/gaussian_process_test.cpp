@@ -259,7 +259,7 @@ TEST(GaussianProcessState, RejectsAnInconsistentState) {
   const GaussianProcessFit fit =
       fit_gaussian_process(inputs, inputs, given(hyperparameters(2, 2, 1, 0.1)));
   GaussianProcessState state = fit.model.state();
-  state.alpha = state.alpha.leftCols(19);
+  state.alpha = state.alpha.leftCols(19).eval();  // a copy: assigning a block of itself aliases
   test::expect_input_error([&] { GaussianProcess gp(state); }, {"gaussian_process.alpha"});
   state = fit.model.state();
   state.hyperparameters.noise_std = -1.0;
