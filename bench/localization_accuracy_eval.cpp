@@ -99,8 +99,8 @@ PlanRegistration register_whole_map(const io::LoadedDataset& d) {
   const LikelihoodFieldModel model(d.plan_grid, lo);
   PlanRegistrationOptions ro;
   ro.seeding.position_step = 0.5;
-  const PlanRegistrationResult result =
-      register_on_plan(d.plan_grid, model, cloud, centre, ScaleRange{.min = 0.8, .max = 1.3}, 1.0, ro);
+  const PlanRegistrationResult result = register_on_plan(
+      d.plan_grid, model, cloud, centre, ScaleRange{.min = 0.8, .max = 1.3}, 1.0, ro);
   return result.registration;
 }
 

@@ -11,8 +11,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       pgm += static_cast<char>(i % 5 == 0 ? 0 : 254);
     fuzz::put("plan.pgm", pgm);
     fuzz::put("gridmap.pgm", pgm);
-    fuzz::put("gridmap.yaml", "image: gridmap.pgm\nresolution: 0.05\norigin: [0, 0, 0]\n"
-                              "negate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n");
+    fuzz::put("gridmap.yaml",
+              "image: gridmap.pgm\nresolution: 0.05\norigin: [0, 0, 0]\n"
+              "negate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n");
     fuzz::put("log.carmen", "ODOM 0 0 0 0 0 0 1 h 1\nFLASER 3 1 2 3 0 0 0 0 0 0 1 h 1\n");
     fuzz::put("pairs.csv", "plan_x,plan_y,grid_x,grid_y\n0,0,1,1\n1,0,2,1\n0,1,1,2\n");
     return true;

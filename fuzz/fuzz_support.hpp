@@ -19,8 +19,9 @@ namespace floorgrid::fuzz {
 /// This process's scratch folder, created once.
 inline const std::filesystem::path& scratch() {
   static const std::filesystem::path folder = [] {
-    const std::filesystem::path base =
-        std::filesystem::is_directory("/dev/shm") ? "/dev/shm" : std::filesystem::temp_directory_path();
+    const std::filesystem::path base = std::filesystem::is_directory("/dev/shm")
+                                           ? "/dev/shm"
+                                           : std::filesystem::temp_directory_path();
     std::filesystem::path f = base / ("floorgrid-fuzz-" + std::to_string(::getpid()));
     std::filesystem::create_directories(f);
     return f;

@@ -1,6 +1,6 @@
 // A deliberate break of the dependency rule: check_includes must refuse this tree.
 #pragma once
 
+#include <nlohmann/json.hpp>
 #include "floorgrid/io/map_io.hpp"
 #include "floorgrid/mapping/point_mapping.hpp"
-#include <nlohmann/json.hpp>
