@@ -124,6 +124,7 @@ void print_log(const json& j, const std::string& indent) {
     fmt::print("{}unknown     {} (skipped)\n", indent,
                fmt::join(j["unknown_types"].get<std::vector<std::string>>(), ", "));
   }
+  print_warnings(j, indent);
 }
 
 void print_pairs(const json& j, const std::string& indent) {

@@ -9,6 +9,8 @@
 #include <string>
 #include <string_view>
 
+#include <fmt/format.h>
+
 #include "floorgrid/core/error.hpp"
 #include "floorgrid/io/carmen_parse.hpp"
 #include "floorgrid/io/line_reader.hpp"
@@ -154,21 +156,30 @@ TypeTrack& track_of(TypeTracks& tracks, std::string_view type) {
   return found->second;
 }
 
+enum class Stamp { kept, zero, backwards };
+
 // Zero, negative or non-finite timestamps are not times; earlier than the last kept message of
 // the type is backwards. Equal timestamps are kept (CSAIL prints 6 digits: most are equal).
-bool keep_timestamp(TypeTrack& track, double timestamp) {
+Stamp keep_timestamp(TypeTrack& track, double timestamp) {
   if (!std::isfinite(timestamp) || timestamp <= 0.0) {
     ++track.count.skipped_zero_timestamp;
-    return false;
+    return Stamp::zero;
   }
   if (timestamp < track.last_kept) {
     ++track.count.skipped_backwards_timestamp;
-    return false;
+    return Stamp::backwards;
   }
   track.last_kept = timestamp;
   ++track.count.kept;
-  return true;
+  return Stamp::kept;
 }
+
+// Messages skipped for a zero timestamp, kept aside in line order: a log whose scans all lack
+// one is read from them instead (scans and odometry then pair up by order).
+struct Unstamped {
+  RobotLog log;
+  std::vector<ResolvedSettings> settings;  // one per scan
+};
 
 bool is_type_name(std::string_view type) {
   return std::all_of(type.begin(), type.end(), [](char c) {
@@ -193,10 +204,17 @@ void record_config(RobotLogSummary& summary, const LaserScan& scan, const Resolv
   ++summary.beams_per_scan[scan.ranges.size()];
 }
 
-// One laser message: parsed, its settings resolved, kept or skipped by its timestamp.
+void apply_settings(LaserScan& scan, const ResolvedSettings& used) {
+  scan.start_angle = used.start_angle.value;
+  scan.angle_increment = used.angle_increment.value;
+  scan.max_range = used.max_range.value;
+  scan.min_range = used.min_range.value;
+}
+
+// One laser message: parsed, its settings resolved, kept or set aside by its timestamp.
 void read_laser(std::string_view type, FieldCursor& fields, std::size_t line,
                 const ParamState& params, const LaserSettings& manifest, TypeTrack& track,
-                RobotLog& log, RobotLogSummary& summary) {
+                RobotLog& log, RobotLogSummary& summary, Unstamped& unstamped) {
   const bool old_style = is_old_laser_type(type);
   LaserScan scan = old_style ? parse_old_laser(fields) : parse_robot_laser(fields);
   scan.type = std::string(type);
@@ -206,14 +224,127 @@ void read_laser(std::string_view type, FieldCursor& fields, std::size_t line,
                                     : resolve_robot_laser(scan, manifest, fields);
   used.min_range = manifest.min_range ? from_manifest(*manifest.min_range, "min_range")
                                       : UsedSetting{0.0, SettingSource::guess, "CARMEN has none"};
-  if (!keep_timestamp(track, scan.timestamp))
-    return;
-  scan.start_angle = used.start_angle.value;
-  scan.angle_increment = used.angle_increment.value;
-  scan.max_range = used.max_range.value;
-  scan.min_range = used.min_range.value;
-  record_config(summary, scan, used);
-  log.scans.push_back(std::move(scan));
+  apply_settings(scan, used);
+  switch (keep_timestamp(track, scan.timestamp)) {
+    case Stamp::kept:
+      record_config(summary, scan, used);
+      log.scans.push_back(std::move(scan));
+      break;
+    case Stamp::zero:
+      unstamped.log.scans.push_back(std::move(scan));
+      unstamped.settings.push_back(used);
+      break;
+    case Stamp::backwards:
+      break;
+  }
+}
+
+// No scan had a valid timestamp: every message set aside is read, in line order.
+void read_in_line_order(Unstamped& unstamped, TypeTracks& tracks, RobotLog& log,
+                        RobotLogSummary& summary) {
+  for (std::size_t i = 0; i < unstamped.log.scans.size(); ++i)
+    record_config(summary, unstamped.log.scans[i], unstamped.settings[i]);
+  log.scans = std::move(unstamped.log.scans);
+  const bool take_odometry = log.odometry.empty();
+  if (take_odometry)
+    log.odometry = std::move(unstamped.log.odometry);
+  for (auto& [type, track] : tracks) {
+    if (is_old_laser_type(type) || is_robot_laser_type(type) || (take_odometry && type == "ODOM")) {
+      track.count.kept += track.count.skipped_zero_timestamp;
+      track.count.skipped_zero_timestamp = 0;
+    }
+  }
+  summary.warnings.push_back(fmt::format(
+      "no laser scan has a valid timestamp (all {} are zero or not a number): read in line "
+      "order, scans and odometry paired by order",
+      log.scans.size()));
+}
+
+// The longest readings of some scans: the cluster within a little of the longest one (lasers
+// report "no return" as one code, or a few codes close together: Seattle's 81.87-81.91 m), and
+// how many readings lie beyond a max range but below that cluster.
+struct LongReadings {
+  float longest = 0.0f;
+  float cluster_low = 0.0f;  // the shortest reading of the cluster
+  std::size_t in_cluster = 0;
+  std::size_t above = 0;  // > max_range and < cluster_low
+  std::size_t total = 0;
+};
+
+LongReadings long_readings(const std::vector<LaserScan*>& scans, double max_range) {
+  LongReadings r;
+  for (const LaserScan* scan : scans) {
+    for (const float range : scan->ranges) {
+      if (std::isfinite(range)) {
+        ++r.total;
+        r.longest = std::max(r.longest, range);
+      }
+    }
+  }
+  const float low = r.longest - std::max(0.1f, 0.002f * r.longest);
+  r.cluster_low = r.longest;
+  for (const LaserScan* scan : scans) {
+    for (const float range : scan->ranges) {
+      if (range >= low && range <= r.longest) {
+        ++r.in_cluster;
+        r.cluster_low = std::min(r.cluster_low, range);
+      }
+    }
+  }
+  for (const LaserScan* scan : scans) {
+    for (const float range : scan->ranges) {
+      if (range > static_cast<float>(max_range) && range < r.cluster_low)
+        ++r.above;
+    }
+  }
+  return r;
+}
+
+// The readings win over a PARAM or a guess of the max range that they contradict: when many
+// readings lie beyond it (other than at one saturation value), or when they saturate at one
+// value below it (ACES at 50 m under CARMEN's 80 m guess: those are no returns, not walls).
+// A max range from a float reading is kept as that float, so the reading compares equal.
+void check_max_range_against_readings(RobotLog& log, RobotLogSummary& summary) {
+  for (LaserConfigUsage& config : summary.laser_configs) {
+    const UsedSetting old = config.max_range;
+    if (old.source != SettingSource::param && old.source != SettingSource::guess)
+      continue;
+    std::vector<LaserScan*> scans;
+    for (LaserScan& scan : log.scans) {
+      if (scan.type == config.type && scan.ranges.size() == config.beams &&
+          scan.max_range == old.value) {
+        scans.push_back(&scan);
+      }
+    }
+    const LongReadings r = long_readings(scans, old.value);
+    if (r.total == 0)
+      continue;
+    const std::size_t many = std::max<std::size_t>(20, r.total / 1000);
+    // Many at the top, but a minority: "no return" codes (all readings alike say nothing).
+    const bool saturates = r.in_cluster >= many && 2 * r.in_cluster < r.total;
+    double value = old.value;
+    std::string why;
+    if (r.above >= many) {
+      value =
+          saturates ? r.cluster_low : std::nextafter(r.longest, std::numeric_limits<float>::max());
+      why = fmt::format("{} readings ({:.2f}%) are longer than it, up to {:.6g} m", r.above,
+                        100.0 * double(r.above) / double(r.total), r.longest);
+    } else if (saturates && r.longest < static_cast<float>(old.value)) {
+      value = r.cluster_low;
+      why = fmt::format("{} readings saturate at {:.6g}-{:.6g} m, below it", r.in_cluster,
+                        r.cluster_low, r.longest);
+    }
+    if (value == old.value)
+      continue;
+    for (LaserScan* scan : scans)
+      scan->max_range = value;
+    config.max_range = {value, SettingSource::readings, why};
+    summary.warnings.push_back(fmt::format(
+        "{} max range {:.6g} m ({}{}{}) contradicts the readings: {}; the readings win: max range "
+        "{:.6g} m{}",
+        config.type, old.value, to_string(old.source), old.detail.empty() ? "" : ": ", old.detail,
+        why, value, saturates ? " (readings at it count as no return)" : ""));
+  }
 }
 
 void summarize_time(const RobotLog& log, RobotLogSummary& summary) {
@@ -243,6 +374,7 @@ CarmenLog read_carmen_log(const std::filesystem::path& path, const CarmenReadOpt
   summary.source = reader.file();
   ParamState params;
   TypeTracks tracks;
+  Unstamped unstamped;
 
   std::string_view line;
   while (reader.next(line)) {
@@ -273,10 +405,13 @@ CarmenLog read_carmen_log(const std::filesystem::path& path, const CarmenReadOpt
     if (type == "ODOM") {
       OdometryReading odometry = parse_odom(fields);
       odometry.line = number;
-      if (keep_timestamp(track, odometry.timestamp))
+      const Stamp stamp = keep_timestamp(track, odometry.timestamp);
+      if (stamp == Stamp::kept)
         log.odometry.push_back(odometry);
+      else if (stamp == Stamp::zero)
+        unstamped.log.odometry.push_back(odometry);
     } else if (is_old_laser_type(type) || is_robot_laser_type(type)) {
-      read_laser(type, fields, number, params, options.laser, track, log, summary);
+      read_laser(type, fields, number, params, options.laser, track, log, summary, unstamped);
     } else if (type == "PARAM") {
       const std::string_view name = fields.word("name");
       const std::string_view value = fields.word("value");
@@ -289,6 +424,8 @@ CarmenLog read_carmen_log(const std::filesystem::path& path, const CarmenReadOpt
   }
 
   summary.lines = reader.line_number();
+  if (log.scans.empty() && !unstamped.log.scans.empty())
+    read_in_line_order(unstamped, tracks, log, summary);
   for (auto& [type, track] : tracks)
     summary.messages[type] = track.count;
   if (log.scans.empty()) {
@@ -297,6 +434,7 @@ CarmenLog read_carmen_log(const std::filesystem::path& path, const CarmenReadOpt
         "nothing to localize with",
         reader.file(), static_cast<long>(summary.lines));
   }
+  check_max_range_against_readings(log, summary);
   summary.ranges = count_ranges(log.scans);
   summarize_time(log, summary);
   return result;

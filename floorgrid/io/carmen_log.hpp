@@ -37,7 +37,15 @@ struct CarmenLog : RobotLog {
 /// `#` comments, blank lines, unknown types (RAWLASER*, TRUEPOS, ...), and ODOM/laser messages
 /// whose timestamp is zero, negative or not finite, or strictly earlier than the last kept
 /// message of the same type (equal timestamps are kept). So the kept timestamps never
-/// decrease within a type.
+/// decrease within a type. Except: when no laser message has a valid timestamp (a log written
+/// with every stamp 0), the zero-stamped messages are read in line order, with a warning.
+///
+/// The readings win over a max range from a PARAM or a guess that they contradict (never over the
+/// manifest's or a ROBOTLASER's own): when more than 0.1% of them (at least 20) lie beyond it,
+/// other than at the longest value, the max range becomes that longest value; when at least as
+/// many sit at one longest value below it (a saturation code, as ACES's 50 m under the 80 m
+/// guess), the max range becomes that value, so they count as no return. Each change is a
+/// warning in `summary.warnings` and the setting's source becomes `readings`.
 ///
 /// Throws InputError naming the file, the 1-based line and the field when the file is missing,
 /// a line is truncated or has extra fields, a number is malformed, a beam count is not in

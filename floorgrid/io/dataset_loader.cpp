@@ -128,7 +128,10 @@ LoadedDataset load_dataset(const std::filesystem::path& path, const PlanRasterOp
   if (m.log) {
     CarmenReadOptions options;
     options.laser = m.laser;
-    RobotLog log = read_carmen(*m.log, options);
+    CarmenLog read = read_carmen_log(*m.log, options);
+    for (const std::string& warning : read.summary.warnings)
+      d.warnings.push_back(m.log->string() + ": " + warning);
+    RobotLog log = std::move(read);
     if (m.odometry_noise) {
       const auto& a = *m.odometry_noise;
       const MotionNoise noise{.alpha1 = a[0], .alpha2 = a[1], .alpha3 = a[2], .alpha4 = a[3]};

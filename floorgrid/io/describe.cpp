@@ -147,7 +147,8 @@ json describe_log(const std::filesystem::path& path, const CarmenReadOptions& op
           {"params", s.params},
           {"first_timestamp", s.first_timestamp},
           {"last_timestamp", s.last_timestamp},
-          {"duration_s", s.duration}};
+          {"duration_s", s.duration},
+          {"warnings", s.warnings}};
 }
 
 json describe_pairs(const std::filesystem::path& path) {

@@ -18,6 +18,8 @@ const char* to_string(SettingSource source) {
       return "param";
     case SettingSource::guess:
       return "guess";
+    case SettingSource::readings:
+      return "readings";
   }
   return "?";
 }

@@ -29,6 +29,8 @@ enum class SettingSource {
   message,   ///< the scan message's own field (ROBOTLASER1)
   param,     ///< a PARAM line of the log
   guess,     ///< CARMEN's guess from the beam count, or its fixed default
+  /// the readings themselves: they contradicted a PARAM or a guess (see RobotLogSummary::warnings)
+  readings,
 };
 
 /// "manifest", "message", "param" or "guess".
@@ -80,6 +82,9 @@ struct RobotLogSummary {
   double first_timestamp = 0.0;  ///< seconds, earliest kept odometry or scan timestamp
   double last_timestamp = 0.0;   ///< seconds, latest kept odometry or scan timestamp
   double duration = 0.0;         ///< seconds, last_timestamp - first_timestamp
+  /// What was read other than the file says: a log read in line order because no scan had a
+  /// valid timestamp, a max range the readings contradicted. One sentence each.
+  std::vector<std::string> warnings;
 };
 
 }  // namespace floorgrid

@@ -471,8 +471,92 @@ TEST(CarmenLogErrorTest, LogWithoutLaserScansIsAnError) {
   TempDir dir;
   expect_located(read_bad(dir, "PARAM a b\n" + odom("0 0 0", "1") + odom("0 0 0", "2")),
                  dir / "bad.log", 3, "");
-  // Scans whose timestamps are all zero leave nothing either.
-  expect_located(read_bad(dir, flaser_of(2, "0") + flaser_of(2, "0")), dir / "bad.log", 2, "");
+}
+
+TEST(CarmenLogTest, LogWithEveryScanTimestampZeroIsReadInLineOrderWithAWarning) {
+  TempDir dir;
+  // Orebro's log is written so: every FLASER and ODOM stamped 0.
+  const CarmenLog log =
+      read_text(dir, odom("1 0 0", "0") + flaser({"1", "2", "3"}, "1 0 0 1 0 0", "0") +
+                         odom("2 0 0", "0") + flaser({"1", "2", "3"}, "2 0 0 2 0 0", "0") +
+                         flaser({"1", "2", "3"}, "3 0 0 3 0 0", "0"));
+  ASSERT_EQ(log.scans.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i)
+    EXPECT_EQ(log.scans[i].robot_pose.x, double(i + 1));  // in line order
+  EXPECT_EQ(log.odometry.size(), 2u);
+  EXPECT_EQ(log.summary.messages.at("FLASER").kept, 3u);
+  EXPECT_EQ(log.summary.messages.at("FLASER").skipped_zero_timestamp, 0u);
+  ASSERT_EQ(log.summary.warnings.size(), 1u);
+  EXPECT_NE(log.summary.warnings[0].find("line order"), std::string::npos);
+
+  // With one valid timestamp, the zero ones are skipped as before, without a warning.
+  const CarmenLog mixed = read_text(dir, flaser_of(2, "0") + flaser_of(2, "5") + flaser_of(2, "0"));
+  EXPECT_EQ(mixed.scans.size(), 1u);
+  EXPECT_EQ(mixed.summary.messages.at("FLASER").skipped_zero_timestamp, 2u);
+  EXPECT_TRUE(mixed.summary.warnings.empty());
+}
+
+// `count` scans of 100 beams: `long_beams` of them at `long_range`, the rest at 3 m.
+std::string scans_with_long_readings(int count, int long_beams, const std::string& long_range,
+                                     int first_stamp = 1) {
+  std::string text;
+  for (int i = 0; i < count; ++i) {
+    std::vector<std::string> ranges(100, "3");
+    for (int b = 0; b < long_beams; ++b)
+      ranges[static_cast<std::size_t>(b)] = long_range;
+    text += flaser(ranges, "0 0 0 0 0 0", std::to_string(first_stamp + i));
+  }
+  return text;
+}
+
+TEST(CarmenLogTest, ReadingsBeyondAParamMaxRangeWinOverIt) {
+  TempDir dir;
+  // PARAM says 10 m, but readings spread to 51 m: they are real, the PARAM is wrong.
+  std::string text = "PARAM robot_front_laser_max 10 0 h 0\n";
+  for (int i = 0; i < 50; ++i) {
+    std::vector<std::string> ranges(100, "3");
+    for (int b = 0; b < 10; ++b)
+      ranges[static_cast<std::size_t>(b)] = std::to_string(11 + (i * 10 + b) % 41);  // 11..51
+    text += flaser(ranges, "0 0 0 0 0 0", std::to_string(i + 1));
+  }
+  const CarmenLog log = read_text(dir, text);
+  ASSERT_EQ(log.summary.laser_configs.size(), 1u);
+  const UsedSetting& max_range = log.summary.laser_configs[0].max_range;
+  EXPECT_EQ(max_range.source, SettingSource::readings);
+  EXPECT_GT(max_range.value, 51.0);  // every reading, 51 m included, is a hit
+  EXPECT_EQ(log.scans[0].max_range, max_range.value);
+  EXPECT_EQ(log.summary.ranges.no_return, 0u);
+  ASSERT_EQ(log.summary.warnings.size(), 1u);
+  EXPECT_NE(log.summary.warnings[0].find("robot_front_laser_max"), std::string::npos);
+  EXPECT_NE(log.summary.warnings[0].find("the readings win"), std::string::npos);
+
+  // The manifest's max range is never overruled.
+  CarmenReadOptions options;
+  options.laser.max_range = 10.0;
+  const CarmenLog kept = read_text(dir, text, options);
+  EXPECT_EQ(kept.summary.laser_configs[0].max_range.value, 10.0);
+  EXPECT_TRUE(kept.summary.warnings.empty());
+}
+
+TEST(CarmenLogTest, ReadingsSaturatingBelowTheGuessAreNoReturns) {
+  TempDir dir;
+  // 5% of the readings at exactly 32.767 m (Orebro's no-return code), under the 80 m guess.
+  const CarmenLog log = read_text(dir, scans_with_long_readings(40, 5, "32.767"));
+  const UsedSetting& max_range = log.summary.laser_configs.at(0).max_range;
+  EXPECT_EQ(max_range.source, SettingSource::readings);
+  EXPECT_EQ(static_cast<float>(max_range.value), 32.767f);
+  EXPECT_EQ(log.summary.ranges.no_return, 200u);
+  // A few long readings are hits, not a saturation code: the guess stands.
+  const CarmenLog few = read_text(
+      dir, scans_with_long_readings(40, 1, "32.767") + scans_with_long_readings(400, 0, "3", 100));
+  EXPECT_EQ(few.scans.size(), 440u);
+  EXPECT_EQ(few.summary.laser_configs.at(0).max_range.source, SettingSource::guess);
+  EXPECT_TRUE(few.summary.warnings.empty());
+  // Long readings at or above a PARAM's max range, all in one cluster, agree with it.
+  const CarmenLog agree = read_text(
+      dir, "PARAM robot_front_laser_max 80.99 0 h 0\n" + scans_with_long_readings(40, 5, "81.91"));
+  EXPECT_EQ(agree.summary.laser_configs.at(0).max_range.source, SettingSource::param);
+  EXPECT_EQ(agree.summary.ranges.no_return, 200u);
 }
 
 TEST(CarmenLogErrorTest, BadLaserParamValueNamesIt) {
@@ -631,17 +715,20 @@ TEST(CarmenRealLogTest, AcesHas440ScansOf180BeamsAtOneDegreeByGuess) {
   EXPECT_EQ(config.beams, 180u);
   EXPECT_EQ(config.angle_increment.value, pi / 180);
   EXPECT_EQ(config.angle_increment.source, SettingSource::guess);
-  EXPECT_EQ(config.max_range.value, 80.0);
-  EXPECT_EQ(config.max_range.source, SettingSource::guess);
   EXPECT_EQ(count_of("zcat '" + file.string() +
                      "' | grep -c -e '_resolution' -e '_laser_max' "
                      "-e 'maxrange' || true"),
             0);
   expect_counts_match(log, "ODOM", timestamp_truth(file, "ODOM", "$8"), grep_count(file, "^ODOM "));
   expect_counts_match(log, "FLASER", timestamp_truth(file, "FLASER", "$($2+9)"), 440);
-  EXPECT_EQ(log.summary.ranges.no_return, 0u);  // ACES saturates at 50 m, below the 80 m guess
+  // ACES saturates at 50 m, below the 80 m guess: the readings win, those are no returns.
+  EXPECT_EQ(config.max_range.source, SettingSource::readings);
+  EXPECT_NEAR(config.max_range.value, 50.0, 0.1);
+  EXPECT_GE(static_cast<long>(log.summary.ranges.no_return), ranges_at_or_above(file, 50.0));
+  EXPECT_LE(static_cast<long>(log.summary.ranges.no_return), ranges_at_or_above(file, 49.9));
+  EXPECT_EQ(log.summary.warnings.size(), 1u);
 
-  // So its manifest must say 50 m: then the saturated readings are no-returns.
+  // A manifest's 50 m is used as given.
   CarmenReadOptions options;
   options.laser.max_range = 50.0;
   const CarmenLog capped = read_carmen_log(file, options);

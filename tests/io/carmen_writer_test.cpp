@@ -26,7 +26,9 @@ constexpr double pi = std::numbers::pi;
 
 LaserScan make_scan(const std::string& type, std::size_t beams, double increment, double max_range,
                     double timestamp, std::mt19937& random) {
-  std::uniform_real_distribution<float> range(0.02f, static_cast<float>(max_range) * 1.1f);
+  // Below the max range, as a real laser's: readings spread beyond it would overrule it (the
+  // reader lets them win over a PARAM).
+  std::uniform_real_distribution<float> range(0.02f, static_cast<float>(max_range) * 0.999f);
   std::uniform_real_distribution<double> any(-100.0, 100.0);
   LaserScan scan;
   scan.type = type;
