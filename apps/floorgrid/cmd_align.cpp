@@ -45,14 +45,15 @@ void run_align(const std::string& dataset, const std::string& out, const JobOpti
   progress.finish();
   require_localized(a.localization.status, d);
   print_localization(a.localization, a.pair_errors);
-  if (a.models.empty())
-    spdlog::warn("no pairs: no model could be fitted");
   print_models(a);
   const std::string name =
       d.manifest.name.empty() ? d.manifest.folder().filename().string() : d.manifest.name;
   const io::AlignmentFiles files = io::write_alignment(a, inputs, name, out, timings);
   fmt::print("\nwrote {} files to {} (metrics.json, model.json, overlays/)\n", files.files.size(),
              files.folder.string());
+  // What was learnt is written (metrics.json holds the localization's story), but a run that
+  // made no pairs is a failure, not a result.
+  require_pairs(a.localization, d);
 }
 
 void add_align_command(CLI::App& root) {

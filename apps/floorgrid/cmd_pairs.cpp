@@ -41,6 +41,7 @@ void add_pairs_command(CLI::App& root) {
         });
     progress.finish();
     require_localized(l.status, d);
+    require_pairs(l, d);
     io::write_pairs_csv(l.pairs, out);
     std::optional<ErrorStatistics> errors;
     if (d.truth_warp && l.pairs.size() > 0) {
@@ -53,8 +54,6 @@ void add_pairs_command(CLI::App& root) {
     }
     print_localization(l, errors);
     fmt::print("wrote       {}\n", out.string());
-    if (l.pairs.size() == 0)
-      spdlog::warn("no pairs: the two filters were never converged together on matching scans");
   });
 }
 

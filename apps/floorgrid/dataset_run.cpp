@@ -1,5 +1,7 @@
 #include "apps/floorgrid/dataset_run.hpp"
 
+#include <fmt/format.h>
+
 #include "floorgrid/core/error.hpp"
 
 namespace floorgrid::app {
@@ -30,6 +32,38 @@ DualLocalizerInputs dual_inputs(const io::LoadedDataset& dataset) {
 void require_localized(const LocalizationStatus& status, const io::LoadedDataset& dataset) {
   if (!status.ok)
     throw InputError(status.message, dataset.manifest.manifest_path.string(), 0, status.field);
+}
+
+void require_pairs(const DualLocalization& l, const io::LoadedDataset& dataset) {
+  if (l.pairs.size() > 0)
+    return;
+  const io::DatasetManifest& m = dataset.manifest;
+  std::size_t grid_converged = 0, plan_converged = 0;
+  for (const ScanRecord& r : l.scans) {
+    grid_converged += r.grid.converged;
+    plan_converged += r.plan.converged;
+  }
+  const std::size_t scans = l.scans.size();
+  const auto share = [&](std::size_t n) { return scans ? 100.0 * double(n) / double(scans) : 0.0; };
+  std::string message = fmt::format(
+      "{}: no reference pairs, so no alignment: the two filters were never converged together "
+      "on matching scans. The gridmap filter was converged on {:.0f}% of the {} scans (first at "
+      "scan {}, at {:.2f}, {:.2f}, {:.3f}), the plan filter on {:.0f}% (started at scan {}, at "
+      "{:.2f}, {:.2f}, {:.3f}); plan scale {:.4f} ({}).",
+      m.manifest_path.string(), share(grid_converged), scans, l.grid_start_scan, l.start.grid.x,
+      l.start.grid.y, l.start.grid.theta, share(plan_converged), l.plan_start_scan, l.start.plan.x,
+      l.start.plan.y, l.start.plan.theta, l.plan_scale,
+      l.plan_scale_estimated ? "estimated" : "given");
+  for (const std::string& note : l.notes)
+    message += " " + note + ".";
+  std::vector<std::string> tries;
+  if (!m.floorplan_scale)
+    tries.push_back("give floorplan_scale if the plan's scale is known");
+  if (!m.initial_pose)
+    tries.push_back("give initial_pose (plan and grid) if the start is known");
+  tries.push_back("check the maps' walls with `floorgrid info` (and the plan with --preview)");
+  message += " Try: " + fmt::format("{}", fmt::join(tries, "; ")) + ".";
+  throw AlignmentFailure(message);
 }
 
 }  // namespace floorgrid::app

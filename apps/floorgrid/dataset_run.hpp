@@ -21,4 +21,8 @@ DualLocalizerInputs dual_inputs(const io::LoadedDataset& dataset);
 /// field the status blames.
 void require_localized(const LocalizationStatus& status, const io::LoadedDataset& dataset);
 
+/// Throws AlignmentFailure when the localization made no pairs: which filter failed, where
+/// they were, the plan scale used, the localizer's notes, and what to try.
+void require_pairs(const DualLocalization& localization, const io::LoadedDataset& dataset);
+
 }  // namespace floorgrid::app

@@ -35,6 +35,9 @@ int main(int argc, char** argv) {
   } catch (const floorgrid::InputError& e) {
     spdlog::error("{}", e.what());
     return 2;
+  } catch (const floorgrid::AlignmentFailure& e) {
+    spdlog::error("{}", e.what());
+    return 3;
   } catch (const std::exception& e) {
     spdlog::error("internal failure: {}", e.what());
     return 1;

@@ -30,6 +30,13 @@ class InputError : public std::runtime_error {
   std::string message_;
 };
 
+/// The input was read, but the job found no answer in it (an alignment that made no reference
+/// pairs). The message says what failed and what to try. The CLI maps it to exit status 3.
+class AlignmentFailure : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 /// Formats "file:line: field: message" leaving out the parts that are empty.
 std::string format_location(const std::string& message, const std::string& file, long line,
                             const std::string& field);

@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <vector>
 
+#include "floorgrid/simulation/log_dataset.hpp"
 #include "floorgrid/simulation/simulator.hpp"
 
 namespace floorgrid::io {
@@ -21,5 +22,15 @@ struct SimulationFiles {
 /// Every file is written atomically.
 SimulationFiles write_simulated_dataset(const SimulatedDataset& dataset,
                                         const std::filesystem::path& folder, bool preview);
+
+/// Writes a semi-real dataset made from the log `source` into `folder` (created if needed):
+/// the plan as floorplan.yaml + floorplan.png (a raster with its map YAML) or, when
+/// `dataset.plan_vector` holds walls, floorplan.dxf (metres, `$INSUNITS` m); gridmap.yaml/.pgm;
+/// log.carmen (the corrected log); manual_pairs.csv; truth.json; dataset.yaml (no start pose,
+/// floorplan_scale absent so `auto`, odometry_noise with the dataset's seed, truth.warp and
+/// truth.manual_pairs) and, with `preview`, preview.png: the gridmap with the plan's walls
+/// through the exact warp and the path. Every file is written atomically.
+SimulationFiles write_log_dataset(const LogDataset& dataset, const std::string& source,
+                                  const std::filesystem::path& folder, bool preview);
 
 }  // namespace floorgrid::io

@@ -176,6 +176,59 @@ json simulation_truth_json(const SimulatedDataset& d) {
   return j;
 }
 
+json log_dataset_truth_json(const LogDataset& d, const std::string& source) {
+  const LogDatasetOptions& o = d.options;
+  const LogDatasetStatistics& s = d.statistics;
+  const SimulatedWarp warp(d.warp);
+  json j;
+  j["format"] = kFormat;
+  j["version"] = kVersion;
+  j["preset"] = "from-log";
+  j["seed"] = o.seed;
+  j["source_log"] = source;
+  j["frames"] = {{"world", "the building as the plan draws it, metres"},
+                 {"plan", "the plan's own coordinates in metres: world x plan.plan_per_world"},
+                 {"grid", "the corrected log's frame, metres (the gridmap's)"}};
+  j["plan"] = {{"plan_per_world", d.plan_per_world},
+               {"plan_scale", 1.0 / d.plan_per_world},
+               {"drawing_units", "m"},
+               {"header_units", "m"},
+               {"drawing_units_per_metre", 1.0}};
+  j["warp"] = warp_json(d.warp);
+  j["parameters"] = {
+      {"plan_scale", *o.plan_scale},
+      {"bend_m", *o.bend},
+      {"rotation_deg", *o.rotation_deg},
+      {"wall_thickness_px", *o.wall_thickness_px},
+      {"resolution", o.resolution},
+      {"mapping_range", o.mapping_range},
+      {"min_wall_extent", o.min_wall_extent},
+      {"odometry_alpha",
+       {o.odometry.alpha1, o.odometry.alpha2, o.odometry.alpha3, o.odometry.alpha4}}};
+  j["statistics"] = {{"scans", s.scans},
+                     {"path_length_m", s.path_length},
+                     {"median_step_m", s.median_step},
+                     {"median_turn_deg", s.median_turn_deg},
+                     {"bend_deviation_m", s.bend_deviation},
+                     {"max_bend_strain", s.max_bend_strain},
+                     {"wall_cells", s.wall_cells},
+                     {"clutter_cells", s.clutter_cells},
+                     {"plan_segments", s.plan_segments},
+                     {"cells", {{"occupied", s.occupied_cells}, {"free", s.free_cells}}}};
+  j["start"] = {{"plan", pose(d.start_in_plan)}, {"grid", pose(d.start_in_grid)}};
+  json poses = json::array();
+  for (const LaserScan& scan : d.log.scans) {
+    const Pose2& g = scan.robot_pose;
+    const Pose2 w = warp.pose_grid_to_world(g).pose;
+    poses.push_back({scan.timestamp, w.x, w.y, w.theta, g.x, g.y, g.theta});
+  }
+  j["trajectory"] = {
+      {"columns", {"time", "world_x", "world_y", "world_theta", "grid_x", "grid_y", "grid_theta"}},
+      {"note", "one pose per scan, in line order; plan pose = world position x plan_per_world"},
+      {"poses", poses}};
+  return j;
+}
+
 PlanTruth read_plan_truth(const std::filesystem::path& path) {
   const std::string where = path.string();
   json j;

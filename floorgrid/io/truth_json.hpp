@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "floorgrid/simulation/log_dataset.hpp"
 #include "floorgrid/simulation/plan_truth.hpp"
 #include "floorgrid/simulation/simulator.hpp"
 
@@ -12,6 +13,11 @@ namespace floorgrid::io {
 /// parameters, the plan's scale and units, the preset's parameters, the run's statistics and
 /// the true trajectory (world frame, and in plan and grid frames).
 nlohmann::json simulation_truth_json(const SimulatedDataset& dataset);
+
+/// truth.json of a semi-real dataset made from the log `source`: the same format as a preset's
+/// (read_plan_truth reads both), with "preset": "from-log", the choices made and the figures,
+/// and the corrected trajectory (grid frame, and in the plan's world).
+nlohmann::json log_dataset_truth_json(const LogDataset& dataset, const std::string& source);
 
 /// Reads the exact plan -> grid mapping from a truth.json. InputError naming the file and the
 /// field for a missing or malformed one.

@@ -154,5 +154,66 @@ TEST(SimulateCommand, BadArgumentsExitWithTwo) {
   EXPECT_NE(blocked.err.find("file"), std::string::npos) << blocked.err;
 }
 
+TEST(SimulateCommand, FromARealLogWritesADatasetOtherToolsRead) {
+  FLOORGRID_REQUIRE_DATA("carmen/aces-corrected.log.gz");
+  TempDir dir;
+  const std::string log = quoted(test::data_path("carmen/aces-corrected.log.gz"));
+  const auto png = run_floorgrid("simulate --from-log " + log +
+                                 " --seed 4 --plan-scale 1.7 --rotation 30 --bend 0.5 --out " +
+                                 quoted(dir / "png") + " --preview");
+  ASSERT_EQ(png.status, 0) << png.err;
+  for (const auto* f :
+       {"floorplan.yaml", "floorplan.png", "gridmap.yaml", "gridmap.pgm", "log.carmen",
+        "manual_pairs.csv", "truth.json", "dataset.yaml", "preview.png"}) {
+    EXPECT_TRUE(fs::exists(dir / "png" / f)) << f;
+  }
+  // The manifest gives no start and no scale; the truth holds the scale asked for.
+  const io::DatasetManifest m = io::read_manifest(dir / "png");
+  EXPECT_FALSE(m.initial_pose);
+  EXPECT_FALSE(m.floorplan_scale);
+  ASSERT_TRUE(m.odometry_noise);
+  const PlanTruth truth = io::read_plan_truth(dir / "png" / "truth.json");
+  EXPECT_NEAR(truth.plan_scale(), 1.0 / 1.7, 1e-12);
+  // The plan's map YAML says its (wrong) resolution: true pixel 0.05 m, times 1 / 1.7.
+  const io::LoadedMap plan = io::read_map_yaml(dir / "png" / "floorplan.yaml");
+  EXPECT_NEAR(plan.grid.resolution(), 0.05 / 1.7, 1e-12);
+  // The log written is the log read (4 ACES saturation readings aside, every field exact).
+  const io::CarmenLog original =
+      io::read_carmen_log(test::data_path("carmen/aces-corrected.log.gz"));
+  const io::CarmenLog written = io::read_carmen_log(dir / "png" / "log.carmen");
+  ASSERT_EQ(written.scans.size(), original.scans.size());
+  for (std::size_t i = 0; i < written.scans.size(); i += 37) {
+    EXPECT_EQ(written.scans[i].robot_pose.x, original.scans[i].robot_pose.x);
+    EXPECT_EQ(written.scans[i].ranges, original.scans[i].ranges);
+  }
+  EXPECT_EQ(run_floorgrid("info " + quoted(dir / "png")).status, 0);
+
+  const auto dxf = run_floorgrid("simulate --from-log " + log +
+                                 " --seed 4 --plan-format dxf --out " + quoted(dir / "dxf"));
+  ASSERT_EQ(dxf.status, 0) << dxf.err;
+  const io::DxfFloorplan read = io::read_dxf(dir / "dxf" / "floorplan.dxf");
+  EXPECT_GT(read.plan.segments().size(), 100u);
+}
+
+TEST(SimulateCommand, FromLogOptionsAreCheckedBeforeAnyWork) {
+  TempDir dir;
+  // Log options without a log, a preset with a log, a bad scale, a missing log.
+  EXPECT_EQ(run_floorgrid("simulate --plan-scale 2 --out " + quoted(dir / "a")).status, 2);
+  EXPECT_EQ(
+      run_floorgrid("simulate --preset office --from-log x.log --out " + quoted(dir / "a")).status,
+      2);
+  test::write_file(dir / "tiny.log", "FLASER 3 1 1 1 0 0 0 0 0 0 1 h 1\n");
+  const auto scale = run_floorgrid("simulate --from-log " + quoted(dir / "tiny.log") +
+                                   " --plan-scale -3 --out " + quoted(dir / "b"));
+  EXPECT_EQ(scale.status, 2);
+  EXPECT_NE(scale.err.find("--plan-scale"), std::string::npos) << scale.err;
+  EXPECT_FALSE(fs::exists(dir / "b"));
+  const auto missing = run_floorgrid("simulate --from-log " + quoted(dir / "none.log") + " --out " +
+                                     quoted(dir / "c"));
+  EXPECT_EQ(missing.status, 2);
+  EXPECT_NE(missing.err.find("none.log"), std::string::npos) << missing.err;
+  EXPECT_FALSE(fs::exists(dir / "c"));
+}
+
 }  // namespace
 }  // namespace floorgrid

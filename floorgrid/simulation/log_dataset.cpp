@@ -1,0 +1,346 @@
+#include "floorgrid/simulation/log_dataset.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "floorgrid/core/error.hpp"
+#include "floorgrid/core/random.hpp"
+#include "floorgrid/core/statistics.hpp"
+#include "floorgrid/simulation/arc_bend.hpp"
+#include "floorgrid/simulation/manual_pairs.hpp"
+#include "floorgrid/simulation/slam_map.hpp"
+
+namespace floorgrid {
+
+namespace {
+
+constexpr double kDegree = std::numbers::pi / 180.0;
+constexpr double kMaxPlanPixels = 2e8;     // a plan raster larger than this is refused
+constexpr int kVectorOversampling = 4;     // vector walls are traced on a raster this much finer
+constexpr double kVectorTolerance = 0.02;  // metres: vector walls simplified to this
+
+// The log's scans as the occupancy mapper takes them: the corrected laser pose, and readings
+// beyond `mapping_range` (or no return) as no return, mapped as free space up to that range.
+std::vector<SlamMapInput> mapping_inputs(const RobotLog& log, double mapping_range) {
+  std::vector<SlamMapInput> inputs;
+  inputs.reserve(log.scans.size());
+  for (const LaserScan& scan : log.scans) {
+    SlamMapInput in;
+    in.laser_pose_in_world = scan.laser_pose;
+    in.start_angle = scan.start_angle;
+    in.angle_increment = scan.angle_increment;
+    in.max_range = std::min(scan.max_range, mapping_range);
+    in.ranges.reserve(scan.ranges.size());
+    for (std::size_t i = 0; i < scan.ranges.size(); ++i) {
+      switch (scan.range_kind(i)) {
+        case RangeKind::hit:
+          in.ranges.push_back(scan.ranges[i]);
+          break;
+        case RangeKind::no_return:
+          in.ranges.push_back(in.max_range);
+          break;
+        case RangeKind::too_close:
+        case RangeKind::invalid:
+          in.ranges.push_back(std::numeric_limits<double>::quiet_NaN());
+          break;
+      }
+    }
+    inputs.push_back(std::move(in));
+  }
+  return inputs;
+}
+
+// A grid's cells of one class as an 8-bit mask (255 where true), row iy = cell row iy.
+cv::Mat mask_of(const OccupancyGrid& grid, CellState state) {
+  cv::Mat mask(grid.height(), grid.width(), CV_8UC1, cv::Scalar(0));
+  for (int iy = 0; iy < grid.height(); ++iy) {
+    auto* row = mask.ptr<std::uint8_t>(iy);
+    for (int ix = 0; ix < grid.width(); ++ix)
+      row[ix] = grid.state(ix, iy) == state ? 255 : 0;
+  }
+  return mask;
+}
+
+// The walls a drafter would draw from the gridmap: occupied blobs (gaps of 0.2 m closed) at
+// least `min_extent` metres across, thickened by `thickness - 1` cells into space the laser never
+// saw free (so the wall's surface stays where the laser found it).
+cv::Mat drawn_walls(const OccupancyGrid& gridmap, double min_extent, int thickness,
+                    LogDatasetStatistics& s) {
+  // A drafter draws a wall seen as dots (sparse scans) as one stroke: gaps up to 0.2 m close.
+  cv::Mat occupied;
+  const int gap = std::max(1, static_cast<int>(std::lround(0.1 / gridmap.resolution())));
+  cv::morphologyEx(mask_of(gridmap, CellState::occupied), occupied, cv::MORPH_CLOSE,
+                   cv::getStructuringElement(cv::MORPH_ELLIPSE, {2 * gap + 1, 2 * gap + 1}));
+  cv::Mat labels, stats, centroids;
+  const int count = cv::connectedComponentsWithStats(occupied, labels, stats, centroids, 8, CV_32S);
+  std::vector<std::uint8_t> keep(static_cast<std::size_t>(count), 0);
+  for (int label = 1; label < count; ++label) {
+    const double extent = std::hypot(stats.at<int>(label, cv::CC_STAT_WIDTH),
+                                     stats.at<int>(label, cv::CC_STAT_HEIGHT)) *
+                          gridmap.resolution();
+    const auto cells = static_cast<std::size_t>(stats.at<int>(label, cv::CC_STAT_AREA));
+    keep[static_cast<std::size_t>(label)] = extent >= min_extent ? 255 : 0;
+    (extent >= min_extent ? s.wall_cells : s.clutter_cells) += cells;
+  }
+  cv::Mat walls(occupied.size(), CV_8UC1, cv::Scalar(0));
+  for (int y = 0; y < walls.rows; ++y) {
+    const int* label = labels.ptr<int>(y);
+    auto* row = walls.ptr<std::uint8_t>(y);
+    for (int x = 0; x < walls.cols; ++x)
+      row[x] = keep[static_cast<std::size_t>(label[x])];
+  }
+  if (thickness > 1) {
+    const int size = 2 * (thickness - 1) + 1;
+    cv::Mat thick;
+    cv::dilate(walls, thick, cv::getStructuringElement(cv::MORPH_ELLIPSE, {size, size}));
+    cv::Mat not_free;
+    cv::bitwise_not(mask_of(gridmap, CellState::free), not_free);
+    cv::bitwise_and(thick, not_free, thick);
+    cv::bitwise_or(thick, walls, walls);
+  }
+  return walls;
+}
+
+// Centres of the mask's set cells, in the grid frame.
+Eigen::Matrix2Xd set_cell_centres(const cv::Mat& mask, const GridGeometry& geometry) {
+  const auto n = static_cast<Eigen::Index>(cv::countNonZero(mask));
+  Eigen::Matrix2Xd points(2, n);
+  Eigen::Index k = 0;
+  for (int iy = 0; iy < mask.rows; ++iy) {
+    const auto* row = mask.ptr<std::uint8_t>(iy);
+    for (int ix = 0; ix < mask.cols; ++ix) {
+      if (row[ix] != 0)
+        points.col(k++) = geometry.cell_center(ix, iy);
+    }
+  }
+  return points;
+}
+
+// The warp: the plan's world turned by `theta` about the walls' centre into the grid, its long
+// axis (the walls' principal axis) bent by `bend` metres at the far end.
+WarpParams choose_warp(const Eigen::Matrix2Xd& walls_in_grid, double theta, double bend,
+                       LogDatasetStatistics& s) {
+  const Eigen::Vector2d centre = walls_in_grid.rowwise().mean();
+  WarpParams warp;
+  warp.T_grid_world = {centre.x(), centre.y(), theta};
+  // The rigid inverse is enough to find the axis: the bend is defined on the world it gives.
+  const Eigen::Matrix2Xd world =
+      rotation_2d(-theta) * (walls_in_grid.colwise() - centre);  // centred on the origin
+  const Eigen::Matrix2d covariance = world * world.transpose() / double(world.cols());
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> solver(covariance);
+  const Eigen::Vector2d axis = solver.eigenvectors().col(1);  // the larger eigenvalue's
+  const Eigen::Vector2d normal(-axis.y(), axis.x());
+  const Eigen::RowVectorXd u = axis.transpose() * world;
+  const Eigen::RowVectorXd v = normal.transpose() * world;
+  const double length = u.maxCoeff() - u.minCoeff();
+  warp.bend.axis_origin = axis * u.minCoeff();
+  warp.bend.axis_angle = std::atan2(axis.y(), axis.x());
+  warp.bend.curvature = bend == 0.0 ? 0.0 : curvature_for_deviation(bend, length);
+  s.bend_deviation = bend_deviation(warp.bend.curvature, length);
+  s.max_bend_strain = max_strain(warp.bend.curvature, v.cwiseAbs().maxCoeff());
+  return warp;
+}
+
+// Renders the drawn walls through the warp onto a raster of the world: pixel `pixel` metres,
+// lower-left corner at `corner`, set where the grid cell under the pixel's centre is a wall.
+cv::Mat render_walls(const cv::Mat& walls, const GridGeometry& geometry, const SimulatedWarp& warp,
+                     const Eigen::Vector2d& corner, double pixel, int width, int height) {
+  cv::Mat raster(height, width, CV_8UC1, cv::Scalar(0));
+  Eigen::Matrix2Xd row_points(2, width);
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x)
+      row_points.col(x) = corner + pixel * Eigen::Vector2d(x + 0.5, y + 0.5);
+    const Eigen::Matrix2Xd in_grid = warp.world_to_grid_batch(row_points);
+    auto* row = raster.ptr<std::uint8_t>(y);
+    for (int x = 0; x < width; ++x) {
+      int ix = 0, iy = 0;
+      if (geometry.cell_of(in_grid.col(x), ix, iy) && walls.at<std::uint8_t>(iy, ix) != 0)
+        row[x] = 255;
+    }
+  }
+  return raster;
+}
+
+// The outlines of a raster's set regions, simplified to `tolerance` pixels, in pixel units
+// (x, y of pixel centres).
+std::vector<std::vector<cv::Point>> outlines(const cv::Mat& raster, double tolerance) {
+  std::vector<std::vector<cv::Point>> contours;
+  cv::findContours(raster.clone(), contours, cv::RETR_LIST, cv::CHAIN_APPROX_NONE);
+  for (auto& contour : contours) {
+    std::vector<cv::Point> simple;
+    cv::approxPolyDP(contour, simple, tolerance, true);
+    contour = std::move(simple);
+  }
+  return contours;
+}
+
+// The corners of the drawn walls: outline vertices turning by 60-120 degrees between edges of at
+// least 3 pixels, in world metres.
+std::vector<Eigen::Vector2d> drawn_corners(const std::vector<std::vector<cv::Point>>& contours,
+                                           const Eigen::Vector2d& corner, double pixel) {
+  std::vector<Eigen::Vector2d> corners;
+  for (const auto& contour : contours) {
+    const std::size_t n = contour.size();
+    if (n < 3)
+      continue;
+    for (std::size_t i = 0; i < n; ++i) {
+      const cv::Point& p = contour[i];
+      const cv::Point a = contour[(i + n - 1) % n] - p;
+      const cv::Point b = contour[(i + 1) % n] - p;
+      const double la = std::hypot(a.x, a.y), lb = std::hypot(b.x, b.y);
+      if (la < 3.0 || lb < 3.0)
+        continue;
+      const double cosine = (a.x * b.x + a.y * b.y) / (la * lb);
+      if (std::abs(cosine) <= 0.5)
+        corners.push_back(corner + pixel * Eigen::Vector2d(p.x + 0.5, p.y + 0.5));
+    }
+  }
+  return corners;
+}
+
+void trace_statistics(const RobotLog& log, LogDatasetStatistics& s) {
+  s.scans = log.scans.size();
+  std::vector<double> steps, turns;
+  for (std::size_t i = 1; i < log.scans.size(); ++i) {
+    const Pose2 step = log.scans[i - 1].robot_pose.between(log.scans[i].robot_pose);
+    steps.push_back(step.translation().norm());
+    turns.push_back(std::abs(step.theta) / kDegree);
+    s.path_length += steps.back();
+  }
+  if (!steps.empty()) {
+    s.median_step = median(steps);
+    s.median_turn_deg = median(turns);
+  }
+}
+
+}  // namespace
+
+void validate_log_dataset_options(const LogDatasetOptions& o) {
+  const auto positive = [](double value, const char* field) {
+    if (!std::isfinite(value) || value <= 0.0)
+      throw InputError("must be a finite number > 0", "", 0, field);
+  };
+  if (o.plan_scale && (!std::isfinite(*o.plan_scale) || *o.plan_scale < 0.05 || *o.plan_scale > 20))
+    throw InputError("must be a number in [0.05, 20]", "", 0, "plan_scale");
+  if (o.bend && (!std::isfinite(*o.bend) || *o.bend < 0.0 || *o.bend > 20.0))
+    throw InputError("must be a number of metres in [0, 20]", "", 0, "bend");
+  if (o.rotation_deg && !std::isfinite(*o.rotation_deg))
+    throw InputError("must be a finite number of degrees", "", 0, "rotation");
+  if (o.wall_thickness_px && (*o.wall_thickness_px < 1 || *o.wall_thickness_px > 20))
+    throw InputError("must be 1..20 pixels", "", 0, "wall_thickness_px");
+  positive(o.resolution, "resolution");
+  positive(o.mapping_range, "mapping_range");
+  positive(o.min_wall_extent, "min_wall_extent");
+  if (!std::isfinite(o.margin) || o.margin < 0.0)
+    throw InputError("must be a finite number >= 0", "", 0, "margin");
+}
+
+LogDataset simulate_from_log(const RobotLog& log, const LogDatasetOptions& options) {
+  validate_log_dataset_options(options);
+  if (log.scans.empty())
+    throw InputError("the log has no laser scan to map", "", 0, "log");
+  LogDataset d;
+  d.log = log;
+  d.options = options;
+  LogDatasetOptions& o = d.options;
+  LogDatasetStatistics& s = d.statistics;
+  Random random(o.seed);
+  Random choices(random.fork()), pairs_random(random.fork());
+  if (!o.plan_scale)
+    o.plan_scale = std::exp(choices.uniform(std::log(0.5), std::log(2.0)));
+  if (!o.bend)
+    o.bend = choices.uniform(0.2, 1.0);
+  const double bend_sign = choices.bernoulli(0.5) ? 1.0 : -1.0;
+  if (!o.rotation_deg)
+    o.rotation_deg = choices.uniform(-180.0, 180.0);
+  if (!o.wall_thickness_px)
+    o.wall_thickness_px = static_cast<int>(choices.integer(2, 4));
+  d.plan_per_world = 1.0 / *o.plan_scale;
+  s.rotation_deg = *o.rotation_deg;
+  s.wall_thickness_px = *o.wall_thickness_px;
+  trace_statistics(log, s);
+
+  // The gridmap: occupancy mapping along the corrected poses, in the log's frame.
+  SlamMapOptions mapping;
+  mapping.resolution = o.resolution;
+  d.gridmap = build_slam_map(
+      mapping_inputs(log, o.mapping_range), [](const Eigen::Vector2d& p) { return p; }, mapping);
+  const CellCounts cells = d.gridmap.counts();
+  s.occupied_cells = cells.occupied;
+  s.free_cells = cells.free;
+
+  const cv::Mat walls = drawn_walls(d.gridmap, o.min_wall_extent, *o.wall_thickness_px, s);
+  const Eigen::Matrix2Xd walls_in_grid = set_cell_centres(walls, d.gridmap.geometry());
+  if (walls_in_grid.cols() < 10) {
+    throw InputError("the log maps no walls to draw a plan from (" +
+                         std::to_string(walls_in_grid.cols()) + " wall cells)",
+                     "", 0, "log");
+  }
+  d.warp = choose_warp(walls_in_grid, *o.rotation_deg * kDegree, bend_sign * *o.bend, s);
+  const SimulatedWarp warp(d.warp);
+
+  // The drawing's paper: the drawn walls' extent in the world, plus the margin.
+  const BatchInverseResult inverse = warp.grid_to_world_batch(walls_in_grid);
+  if (!inverse.converged)
+    throw InputError("the bend is too strong for this building to invert", "", 0, "bend");
+  Eigen::AlignedBox2d paper;
+  for (Eigen::Index i = 0; i < inverse.points.cols(); ++i)
+    paper.extend(inverse.points.col(i));
+  const Eigen::Vector2d corner = paper.min().array() - o.margin;
+  const Eigen::Vector2d size = paper.sizes().array() + 2.0 * o.margin;
+  const int width = static_cast<int>(std::ceil(size.x() / o.resolution));
+  const int height = static_cast<int>(std::ceil(size.y() / o.resolution));
+  if (double(width) * double(height) > kMaxPlanPixels)
+    throw InputError("the plan would be too large to draw", "", 0, "resolution");
+  const cv::Mat raster =
+      render_walls(walls, d.gridmap.geometry(), warp, corner, o.resolution, width, height);
+
+  GridGeometry plan_geometry;
+  plan_geometry.width = width;
+  plan_geometry.height = height;
+  plan_geometry.resolution = o.resolution * d.plan_per_world;
+  plan_geometry.origin = {corner.x() * d.plan_per_world, corner.y() * d.plan_per_world, 0.0};
+  d.plan_raster = OccupancyGrid(plan_geometry, CellState::free);
+  for (int iy = 0; iy < height; ++iy) {
+    const auto* row = raster.ptr<std::uint8_t>(iy);
+    for (int ix = 0; ix < width; ++ix) {
+      if (row[ix] != 0)
+        d.plan_raster.set_state(ix, iy, CellState::occupied);
+    }
+  }
+
+  if (o.vector_plan) {
+    const double fine = o.resolution / kVectorOversampling;
+    const cv::Mat detailed =
+        render_walls(walls, d.gridmap.geometry(), warp, corner, fine, width * kVectorOversampling,
+                     height * kVectorOversampling);
+    for (const auto& contour : outlines(detailed, kVectorTolerance / fine)) {
+      for (std::size_t i = 0; i < contour.size() && contour.size() > 1; ++i) {
+        const cv::Point& a = contour[i];
+        const cv::Point& b = contour[(i + 1) % contour.size()];
+        const auto plan_point = [&](const cv::Point& p) -> Eigen::Vector2d {
+          return (corner + fine * Eigen::Vector2d(p.x + 0.5, p.y + 0.5)) * d.plan_per_world;
+        };
+        d.plan_vector.add_segment(plan_point(a), plan_point(b), "WALLS");
+      }
+    }
+    s.plan_segments = d.plan_vector.segments().size();
+  }
+
+  ManualPairsOptions pair_options;
+  d.manual_pairs =
+      emulate_manual_pairs(drawn_corners(outlines(raster, 1.0), corner, o.resolution), d.truth(),
+                           d.plan_per_world, d.gridmap, pair_options, pairs_random);
+
+  d.start_in_grid = log.scans.front().robot_pose;
+  const PoseInverseResult start = warp.pose_grid_to_world(d.start_in_grid);
+  d.start_in_plan = {start.pose.x * d.plan_per_world, start.pose.y * d.plan_per_world,
+                     start.pose.theta};
+  return d;
+}
+
+}  // namespace floorgrid
