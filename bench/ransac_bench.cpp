@@ -133,13 +133,14 @@ void BM_OpenCvEstimateAffinePartial2D(benchmark::State& state) {
     to[static_cast<std::size_t>(i)] = cv::Point2f(static_cast<float>(data.points_in_grid(0, i)),
                                                   static_cast<float>(data.points_in_grid(1, i)));
   }
-  const RansacOptions options;
+  RansacOptions options;
+  options.inlier_threshold = 0.10;  // OpenCV needs one: the same for both
   cv::Mat T;
   std::vector<std::uint8_t> inliers;
   std::vector<double> seconds;
   for (auto _ : state) {
     const auto start = std::chrono::steady_clock::now();
-    T = cv::estimateAffinePartial2D(from, to, inliers, cv::RANSAC, options.inlier_threshold,
+    T = cv::estimateAffinePartial2D(from, to, inliers, cv::RANSAC, *options.inlier_threshold,
                                     static_cast<std::size_t>(options.max_iterations),
                                     options.confidence);
     seconds.push_back(

@@ -3,6 +3,8 @@
 #include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
+#include <charconv>
+
 #include "apps/floorgrid/cli_util.hpp"
 #include "apps/floorgrid/commands.hpp"
 #include "floorgrid/core/error.hpp"
@@ -56,6 +58,7 @@ void add_fit_command(CLI::App& root) {
     // Signed, so that a negative budget is refused rather than wrapped around.
     long long budget = static_cast<long long>(MappingOptions{}.common.reduction.budget);
     double memory_limit_gb = io::default_memory_limit_gb();
+    std::string inlier_threshold = "auto";
   };
   auto args = std::make_shared<Args>();
   std::string models;
@@ -80,8 +83,10 @@ void add_fit_command(CLI::App& root) {
       ->capture_default_str();
   cmd->add_option("--seed", args->options.common.seed, "seed of RANSAC and subsampling")
       ->capture_default_str();
-  cmd->add_option("--inlier-threshold", args->options.ransac.inlier_threshold,
-                  "metres: RANSAC inlier distance of the gt models")
+  cmd->add_option("--inlier-threshold", args->inlier_threshold,
+                  fmt::format("metres: RANSAC inlier distance of the gt models, or "
+                              "auto: {:g} times the pairs' noise scale, estimated from the fit",
+                              RansacOptions{}.threshold_sigmas))
       ->capture_default_str();
   cmd->add_option("--extrapolation", args->options.common.extrapolation_distance,
                   "metres from the nearest pair beyond which `map` flags a point extrapolated")
@@ -98,10 +103,18 @@ void add_fit_command(CLI::App& root) {
     if (!(extrapolation >= 0.0 && extrapolation <= kMaxCoordinate))
       throw InputError(fmt::format("must be a distance in [0, 1e7] metres (got {})", extrapolation),
                        {}, 0, "--extrapolation");
-    const double threshold = args->options.ransac.inlier_threshold;
-    if (!(threshold > 0.0 && threshold <= kMaxCoordinate))
-      throw InputError(fmt::format("must be a distance in (0, 1e7] metres (got {})", threshold), {},
-                       0, "--inlier-threshold");
+    if (args->inlier_threshold != "auto") {
+      const std::string& text = args->inlier_threshold;
+      double threshold = 0.0;
+      const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), threshold);
+      if (error != std::errc() || end != text.data() + text.size() ||
+          !(threshold > 0.0 && threshold <= kMaxCoordinate)) {
+        throw InputError(
+            fmt::format("must be auto or a distance in (0, 1e7] metres (got {})", text), {}, 0,
+            "--inlier-threshold");
+      }
+      args->options.ransac.inlier_threshold = threshold;
+    }
     args->options.common.reduction.budget = static_cast<std::size_t>(args->budget);
     refuse_overwriting_input(args->pairs, args->out, "--out");
     ReferencePairs pairs = io::read_pairs_csv(args->pairs, args->unit);

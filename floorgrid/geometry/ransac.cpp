@@ -11,6 +11,7 @@
 #include "floorgrid/core/random.hpp"
 #include "floorgrid/core/validation.hpp"
 #include "floorgrid/geometry/inlier_classification.hpp"
+#include "floorgrid/geometry/residual_scale.hpp"
 
 namespace floorgrid {
 namespace {
@@ -19,14 +20,26 @@ using Affine = Eigen::Matrix<double, 2, 3>;  // [L | t]: q = L p + t
 
 // Passes of the refit on the verification subset at most.
 constexpr int kSubsetRefitPasses = 10;
+// Adaptive threshold: rounds of refit and re-estimated noise at most, the relative change of
+// the threshold that ends them, and its floor as a share of the extent (exact pairs have no
+// noise to measure; below this only rounding is left).
+constexpr int kMaxScalePasses = 20;
+constexpr double kScaleTolerance = 0.01;
+constexpr double kMinThresholdFraction = 1e-6;
 
 [[noreturn]] void throw_pairs_error(const std::string& message) {
   throw InputError(message, {}, 0, "pairs");
 }
 
 void validate_options(const RansacOptions& o) {
-  require_option(o.inlier_threshold > 0.0 && std::isfinite(o.inlier_threshold), "ransac",
-                 "inlier_threshold", o.inlier_threshold, "> 0 metres");
+  if (o.inlier_threshold) {
+    require_option(*o.inlier_threshold > 0.0 && std::isfinite(*o.inlier_threshold), "ransac",
+                   "inlier_threshold", *o.inlier_threshold, "> 0 metres, or unset (adaptive)");
+  }
+  require_option(o.threshold_sigmas > 0.0 && o.threshold_sigmas <= 100.0, "ransac",
+                 "threshold_sigmas", o.threshold_sigmas, "in (0, 100]");
+  require_option(o.search_threshold_fraction > 0.0 && o.search_threshold_fraction <= 1.0, "ransac",
+                 "search_threshold_fraction", o.search_threshold_fraction, "in (0, 1]");
   require_option(o.confidence > 0.0 && o.confidence < 1.0, "ransac", "confidence", o.confidence,
                  "in (0, 1)");
   require_option(o.max_iterations >= 1, "ransac", "max_iterations", o.max_iterations, ">= 1");
@@ -59,7 +72,20 @@ struct ScoringSet {
   Eigen::Vector2d origin_in_grid = Eigen::Vector2d::Zero();
   Eigen::ArrayXd px, py, qx, qy, w;  // relative to the origins
   double extent = 0.0;               // metres: bounding box diagonal of the plan points
+  double grid_extent = 0.0;          // metres: diagonal of the grid points' 5-95% box
 };
+
+// The spread of `values` between their 5th and 95th percentiles: an extent that a few wild
+// outliers do not stretch.
+double percentile_spread(const Eigen::ArrayXd& values) {
+  std::vector<double> v(values.begin(), values.end());
+  const auto last = static_cast<double>(v.size() - 1);
+  const auto lo = v.begin() + static_cast<std::ptrdiff_t>(std::floor(0.05 * last));
+  const auto hi = v.begin() + static_cast<std::ptrdiff_t>(std::ceil(0.95 * last));
+  std::nth_element(v.begin(), hi, v.end());
+  std::nth_element(v.begin(), lo, hi);
+  return *hi - *lo;
+}
 
 // `count` pairs drawn at random, one from each of `count` equal strata of the pair indices
 // (sorted and distinct by construction, no sort needed, and spread over the whole recording),
@@ -99,6 +125,7 @@ ScoringSet make_scoring_set(const ReferencePairs& pairs, const std::vector<Eigen
   s.px -= s.origin_in_plan.x(), s.py -= s.origin_in_plan.y();
   s.qx -= s.origin_in_grid.x(), s.qy -= s.origin_in_grid.y();
   s.extent = std::hypot(s.px.maxCoeff() - s.px.minCoeff(), s.py.maxCoeff() - s.py.minCoeff());
+  s.grid_extent = std::hypot(percentile_spread(s.qx), percentile_spread(s.qy));
   return s;
 }
 
@@ -212,15 +239,15 @@ struct Refined {
 };
 
 Refined refit_on_inliers(const ReferencePairs& pairs, Hypothesis h, const ScoringSet& origins,
-                         const RansacOptions& options, int max_passes,
+                         const RansacOptions& options, double threshold, int max_passes,
                          std::vector<std::uint8_t>& mask) {
   Refined r;
   PairMoments moments;
   for (r.passes = 1;; ++r.passes) {
     // The first pass sums every inlier; later ones only the pairs that joined or left.
-    r.last = classify_inliers(
-        pairs, h.T, options.inlier_threshold, origins.origin_in_plan, origins.origin_in_grid,
-        r.passes == 1 ? InlierPassMode::full : InlierPassMode::delta, mask, options.threads);
+    r.last = classify_inliers(pairs, h.T, threshold, origins.origin_in_plan, origins.origin_in_grid,
+                              r.passes == 1 ? InlierPassMode::full : InlierPassMode::delta, mask,
+                              options.threads);
     if (r.last.first_bad >= 0)
       validate_pair(pairs, r.last.first_bad);
     if (r.passes == 1) {
@@ -245,6 +272,67 @@ Refined refit_on_inliers(const ReferencePairs& pairs, Hypothesis h, const Scorin
   }
   r.hypothesis = h;
   return r;
+}
+
+// ---- adaptive threshold: the noise scale of the winner's residuals ----
+
+int transform_parameters(TransformKind kind) {
+  switch (kind) {
+    case TransformKind::rigid:
+      return 3;
+    case TransformKind::affine:
+      return 6;
+    case TransformKind::similarity:
+      break;
+  }
+  return 4;
+}
+
+// |T p - q| of every pair.
+std::vector<double> residual_distances(const ReferencePairs& pairs, const Affine& T) {
+  const Eigen::Matrix2Xd mapped =
+      (T.leftCols<2>() * pairs.points_in_plan).colwise() + T.col(2) - pairs.points_in_grid;
+  const Eigen::VectorXd d = mapped.colwise().norm().transpose();
+  return {d.data(), d.data() + d.size()};
+}
+
+struct Scale {
+  Hypothesis hypothesis;    // refitted on its inliers at `threshold`
+  double threshold = 0.0;   // metres
+  double sigma = 0.0;       // metres per axis (0 when never identified)
+  bool identified = false;  // in the last round
+  int passes = 0;
+};
+
+// Rounds of: refit on the inliers of the threshold, sigma from their residuals, threshold =
+// threshold_sigmas sigma (doubled while sigma is not identifiable), until it settles.
+Scale adapt_threshold(const ReferencePairs& on, Hypothesis h, const ScoringSet& origins,
+                      const RansacOptions& options, double threshold,
+                      std::vector<std::uint8_t>& scratch) {
+  const double floor = kMinThresholdFraction * std::max(origins.grid_extent, origins.extent);
+  const int parameters = transform_parameters(options.kind);
+  Scale s;
+  s.threshold = threshold;
+  for (s.passes = 1; s.passes <= kMaxScalePasses; ++s.passes) {
+    h = refit_on_inliers(on, h, origins, options, s.threshold, kSubsetRefitPasses, scratch)
+            .hypothesis;
+    std::vector<double> distances = residual_distances(on, h.T);
+    const std::optional<double> sigma =
+        truncated_rayleigh_scale(distances, s.threshold, parameters);
+    double next = 2.0 * s.threshold;
+    s.identified = sigma.has_value();
+    if (sigma) {
+      s.sigma = *sigma;
+      next = std::max(options.threshold_sigmas * *sigma, floor);
+    }
+    const bool settled = sigma && std::abs(next - s.threshold) <= kScaleTolerance * s.threshold;
+    s.threshold = next;
+    if (settled)
+      break;
+  }
+  s.passes = std::min(s.passes, kMaxScalePasses);
+  s.hypothesis = h;
+  return s;
 }
 
 }  // namespace
@@ -288,7 +376,6 @@ RansacResult ransac_transform(const ReferencePairs& pairs, const RansacOptions& 
             << " pairs (got " << n << ")";
     throw_pairs_error(message.str());
   }
-  const double threshold2 = options.inlier_threshold * options.inlier_threshold;
   Random random(options.seed);
   Random subset_random(random.fork());
   Random sample_random(random.fork());
@@ -298,8 +385,16 @@ RansacResult ransac_transform(const ReferencePairs& pairs, const RansacOptions& 
       make_scoring_set(pairs, draw_subset(n, options.preemptive_subset, subset_random));
   const double separation = options.min_sample_separation * scoring.extent;
   const auto scoring_size = static_cast<double>(scoring.px.size());
+  const bool adaptive = !options.inlier_threshold.has_value();
+  // Adaptive: the search's threshold, wide, until the noise is measured.
+  double threshold = adaptive ? options.search_threshold_fraction * scoring.grid_extent
+                              : *options.inlier_threshold;
+  if (!(threshold > 0.0))  // all grid points (nearly) equal: any positive scale will do
+    threshold = options.search_threshold_fraction * std::max(scoring.extent, 1.0);
+  const double threshold2 = threshold * threshold;
 
   RansacResult result;
+  result.threshold_adaptive = adaptive;
   std::vector<Hypothesis> best;
   std::size_t best_inliers = 0;
   int needed = options.max_iterations;
@@ -340,27 +435,48 @@ RansacResult ransac_transform(const ReferencePairs& pairs, const RansacOptions& 
   // that the passes over all pairs start close to their fixed point.
   Hypothesis winner = best.front();
   std::vector<std::uint8_t> scratch;
-  if (static_cast<std::size_t>(scoring.px.size()) < static_cast<std::size_t>(n)) {
-    const bool verify_on_all = static_cast<std::size_t>(n) <= options.verify_subset;
-    const ReferencePairs verify =
-        verify_on_all ? ReferencePairs{}
-                      : gather_pairs(pairs, draw_subset(n, options.verify_subset, subset_random));
-    const ReferencePairs& on = verify_on_all ? pairs : verify;
+  const bool verify_on_all = static_cast<std::size_t>(n) <= options.verify_subset;
+  ReferencePairs verify;
+  const bool scored_on_all =
+      static_cast<std::size_t>(scoring.px.size()) == static_cast<std::size_t>(n);
+  if (!verify_on_all && (!scored_on_all || adaptive))
+    verify = gather_pairs(pairs, draw_subset(n, options.verify_subset, subset_random));
+  const ReferencePairs& on = verify_on_all ? pairs : verify;
+  if (!scored_on_all) {
     if (best.size() > 1) {
       double best_cost = INFINITY;
       for (const Hypothesis& h : best) {
-        const double cost = msac_cost(on, h.T, options.inlier_threshold, options.threads);
+        const double cost = msac_cost(on, h.T, threshold, options.threads);
         if (cost < best_cost)
           best_cost = cost, winner = h;
       }
     }
-    if (!verify_on_all) {
-      winner = refit_on_inliers(verify, winner, scoring, options, kSubsetRefitPasses, scratch)
-                   .hypothesis;
+    if (!verify_on_all && !adaptive) {
+      winner =
+          refit_on_inliers(verify, winner, scoring, options, threshold, kSubsetRefitPasses, scratch)
+              .hypothesis;
     }
   }
+  if (adaptive) {
+    // The noise is measured on the verification subset (all pairs when few): tens of
+    // thousands of residuals pin sigma down as well as millions.
+    const Scale scale = adapt_threshold(on, winner, scoring, options, threshold, scratch);
+    winner = scale.hypothesis;
+    threshold = scale.threshold;
+    result.noise_sigma = scale.sigma;
+    result.scale_passes = scale.passes;
+    if (!scale.identified) {
+      std::ostringstream text;
+      text << (result.message.empty() ? "" : "; ")
+           << "the noise of the residuals did not settle to a measurable scale; the threshold "
+              "was widened to "
+           << threshold << " m";
+      result.message += text.str();
+    }
+  }
+  result.inlier_threshold = threshold;
 
-  const Refined refined = refit_on_inliers(pairs, winner, scoring, options,
+  const Refined refined = refit_on_inliers(pairs, winner, scoring, options, threshold,
                                            options.max_refit_passes, result.inlier_mask);
   result.refit_passes = refined.passes;
   result.inlier_count = refined.last.inliers;

@@ -3,6 +3,7 @@
 #include <Eigen/Core>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -12,16 +13,25 @@
 
 namespace floorgrid {
 
-/// Options of ransac_transform. Defaults suit laser pairs in metres.
+/// Options of ransac_transform. Defaults suit pairs in metres of any noise: laser pairs
+/// (centimetres) and hand-picked ones (decimetres).
 struct RansacOptions {
   TransformKind kind = TransformKind::similarity;  ///< the family fitted
   /// Similarity and rigid: `allow` scores a proper and a mirrored hypothesis per sample.
   Reflection reflection = Reflection::allow;
-  double inlier_threshold = 0.10;  ///< metres: a pair is an inlier when |T p - q| <= this
-  double confidence = 0.999;       ///< in (0, 1): wanted probability of one all-inlier sample
-  int max_iterations = 10000;      ///< minimal samples drawn at most
-  int min_iterations = 20;         ///< minimal samples drawn at least
-  std::uint64_t seed = 1;          ///< same seed, same result
+  /// metres: a pair is an inlier when |T p - q| <= this. Unset: adaptive, `threshold_sigmas`
+  /// times the noise scale of the pairs, estimated from the residuals of the fit.
+  std::optional<double> inlier_threshold;
+  /// Adaptive threshold: its multiple of the noise scale sigma (metres per axis). 3 keeps
+  /// 98.9% of Gaussian inliers (|T p - q| is Rayleigh(sigma): exp(-3^2 / 2) = 1.1% lie beyond).
+  double threshold_sigmas = 3.0;
+  /// Adaptive threshold: the threshold of the search for hypotheses, before the noise is known,
+  /// as a share of the grid points' extent (the diagonal of their 5th-95th percentile box).
+  double search_threshold_fraction = 0.02;
+  double confidence = 0.999;   ///< in (0, 1): wanted probability of one all-inlier sample
+  int max_iterations = 10000;  ///< minimal samples drawn at most
+  int min_iterations = 20;     ///< minimal samples drawn at least
+  std::uint64_t seed = 1;      ///< same seed, same result
   /// Pairs (a fixed random subset) on which every hypothesis is scored; all pairs when fewer.
   std::size_t preemptive_subset = 2000;
   int verify_count = 4;  ///< best hypotheses on that subset re-scored on the verification subset
@@ -45,6 +55,14 @@ struct RansacResult {
   TransformEstimate estimate;
   /// One entry per pair: 1 when |T p - q| <= inlier_threshold under the returned transform.
   std::vector<std::uint8_t> inlier_mask;
+  /// metres: the threshold the inliers were classified with (the given one, or the adaptive
+  /// one; 0 when the fit did not get that far).
+  double inlier_threshold = 0.0;
+  bool threshold_adaptive = false;  ///< whether inlier_threshold was adapted to the noise
+  /// Adaptive threshold: the pairs' noise scale sigma, metres per axis (0 when given).
+  double noise_sigma = 0.0;
+  /// Adaptive threshold: rounds of refit and re-estimated sigma (0 when given).
+  int scale_passes = 0;
   std::size_t inlier_count = 0;  ///< pairs with inlier_mask 1
   int iterations = 0;            ///< minimal samples drawn (degenerate ones included)
   int degenerate_samples = 0;    ///< samples rejected as too close or collinear
@@ -62,6 +80,16 @@ struct RansacResult {
 /// inliers (weighted least squares, the winner's handedness kept), repeat until the inlier set
 /// is unchanged or `max_refit_passes` passes over all pairs are done; the reported inliers and
 /// rms are those of the returned T. Deterministic for a seed, whatever `threads`.
+///
+/// Adaptive threshold (`inlier_threshold` unset; MSAC with an estimated scale, as in
+/// MLESAC/MAGSAC): the search scores hypotheses at `search_threshold_fraction` of the grid
+/// points' extent (wide, so that noise of any size is inside; outliers spread over the map
+/// rarely are). Then, on the verification subset (all pairs when few), rounds of: refit the
+/// winner on its inliers, estimate sigma from their residuals (truncated_rayleigh_scale, the
+/// median corrected for the cut), set the threshold to `threshold_sigmas` sigma (doubled
+/// instead while sigma is not identifiable), until the threshold changes by less than 1%. The
+/// threshold never falls below 1e-6 of the extent (exact pairs). The passes over all pairs use
+/// the final threshold. With a given threshold the result is what it always was.
 ///
 /// Throws InputError naming `pairs` on mismatched sizes, fewer pairs than a minimal sample,
 /// NaN or infinite coordinates, negative or NaN weights, or degenerate pairs (all plan points

@@ -348,7 +348,18 @@ void visit(OptionVisitor& v, RansacOptions& o) {
               {"require", Reflection::require}},
              "Similarity and rigid");
   v.field("inlier_threshold", o.inlier_threshold,
-          {.unit = "m", .doc = "A pair is an inlier when |T p - q| <= this", .choices = {}});
+          {.unit = "m",
+           .doc = "A pair is an inlier when |T p - q| <= this (null: adapted to the pairs' noise)",
+           .choices = {}});
+  v.field("threshold_sigmas", o.threshold_sigmas,
+          {.unit = "",
+           .doc = "Adaptive threshold: this many times the estimated noise scale sigma (per axis)",
+           .choices = {}});
+  v.field(
+      "search_threshold_fraction", o.search_threshold_fraction,
+      {.unit = "",
+       .doc = "Adaptive threshold: the hypothesis search's, as a share of the grid points' extent",
+       .choices = {}});
   v.field(
       "confidence", o.confidence,
       {.unit = "", .doc = "Wanted probability of one all-inlier sample, in (0, 1)", .choices = {}});
@@ -540,7 +551,8 @@ void visit(OptionVisitor& v, MappingOptions& o) {
   v.group("ransac", "Gt variants (and gpgt's global part)", [&] { visit(v, o.ransac); });
   v.field("gpgt_inlier_threshold", o.gpgt_inlier_threshold,
           {.unit = "m",
-           .doc = "The RANSAC inlier distance of gpgt's similarity (wide: the GP takes the bends)",
+           .doc = "The RANSAC inlier distance of gpgt's similarity (null: adapted to the "
+                  "pairs' noise; a fixed one should be wide: the GP takes the bends)",
            .choices = {}});
   v.group("lc", "Lc", [&] { visit(v, o.lc); });
   v.group("ct", "Ct", [&] { visit(v, o.ct); });

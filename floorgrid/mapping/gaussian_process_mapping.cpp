@@ -32,7 +32,9 @@ void GaussianProcessMapping::fit_model(const ReferencePairs& pairs, FitSummary& 
                T_grid_plan_.topRightCorner<2, 1>();
     global = {{"T_grid_plan", model_fields::matrix(T_grid_plan_)},
               {"inliers", gt.inlier_count},
-              {"rms_m", gt.estimate.rms}};
+              {"rms_m", gt.estimate.rms},
+              {"inlier_threshold_m", gt.inlier_threshold},
+              {"inlier_threshold_source", gt.threshold_adaptive ? "adaptive" : "given"}};
   }
   GaussianProcessFit fit = fit_gaussian_process(pairs.points_in_plan, outputs, gp_options_);
   process_.emplace(std::move(fit.model));

@@ -17,9 +17,19 @@ std::string global_transform_model_name(TransformKind kind) {
   return "gt";
 }
 
+namespace {
+
+// The model file's record of where the threshold came from.
+constexpr const char* kThresholdGiven = "given";
+constexpr const char* kThresholdAdaptive = "adaptive";
+
+}  // namespace
+
 GlobalTransformMapping::GlobalTransformMapping(MappingCommonOptions common, RansacOptions ransac)
     : PointMapping(std::move(common)), ransac_(ransac) {
   ransac_.seed = this->common().seed;
+  threshold_used_ = ransac_.inlier_threshold;
+  threshold_source_ = ransac_.inlier_threshold ? kThresholdGiven : kThresholdAdaptive;
 }
 
 std::string GlobalTransformMapping::name() const {
@@ -40,6 +50,8 @@ void GlobalTransformMapping::fit_model(const ReferencePairs& pairs, FitSummary& 
   if (!result.ok)
     throw InputError("no transform fits the pairs: " + result.message, {}, 0, "pairs");
   set_transform(result.estimate.T_grid_plan);
+  threshold_used_ = result.inlier_threshold;
+  threshold_source_ = result.threshold_adaptive ? kThresholdAdaptive : kThresholdGiven;
   summary.inliers = result.inlier_count;
   summary.rms_m = result.estimate.rms;
   summary.details = {{"kind", transform_kind_name(ransac_.kind)},
@@ -47,8 +59,14 @@ void GlobalTransformMapping::fit_model(const ReferencePairs& pairs, FitSummary& 
                      {"reflected", result.estimate.reflected},
                      {"iterations", result.iterations},
                      {"refit_passes", result.refit_passes},
-                     {"inlier_threshold_m", ransac_.inlier_threshold},
+                     {"inlier_threshold_m", result.inlier_threshold},
+                     {"inlier_threshold_source", threshold_source_},
                      {"inlier_fraction", double(result.inlier_count) / double(pairs.size())}};
+  if (result.threshold_adaptive) {
+    summary.details["noise_sigma_m"] = result.noise_sigma;
+    summary.details["threshold_sigmas"] = ransac_.threshold_sigmas;
+    summary.details["scale_passes"] = result.scale_passes;
+  }
   if (!result.message.empty())
     summary.warnings.push_back(result.message);
 }
@@ -75,10 +93,12 @@ InverseMapping GlobalTransformMapping::inverse(const Eigen::Vector2d& g) const {
 }
 
 Value GlobalTransformMapping::parameters() const {
+  // The threshold the fit used (null: a file that did not say, loaded and written again).
   return {{"kind", transform_kind_name(ransac_.kind)},
           {"T_grid_plan", model_fields::matrix(T_grid_plan_)},
           {"ransac",
-           {{"inlier_threshold_m", ransac_.inlier_threshold},
+           {{"inlier_threshold_m", threshold_used_ ? Value(*threshold_used_) : Value(nullptr)},
+            {"inlier_threshold_source", threshold_source_},
             {"confidence", ransac_.confidence},
             {"max_iterations", ransac_.max_iterations}}}};
 }
@@ -99,6 +119,24 @@ void GlobalTransformMapping::load_parameters(const Value& j, const std::string& 
                      where, 0, "parameters.T_grid_plan");
   }
   set_transform(T);
+  // A record only (mapping does not need it), kept so that the file is written back as read.
+  // Files before the adaptive threshold hold the fixed one they used and no source.
+  threshold_used_.reset();
+  threshold_source_ = kThresholdGiven;
+  if (const Value* ransac = model_fields::optional_member(j, "ransac")) {
+    if (const Value* t = model_fields::optional_member(*ransac, "inlier_threshold_m")) {
+      threshold_used_ = model_fields::number(*t, where, "parameters.ransac.inlier_threshold_m", 0.0,
+                                             kMaxCoordinate);
+    }
+    if (const Value* source = model_fields::optional_member(*ransac, "inlier_threshold_source")) {
+      threshold_source_ =
+          model_fields::text(*source, where, "parameters.ransac.inlier_threshold_source");
+      if (threshold_source_ != kThresholdGiven && threshold_source_ != kThresholdAdaptive) {
+        throw InputError("must be 'given' or 'adaptive' (got '" + threshold_source_ + "')", where,
+                         0, "parameters.ransac.inlier_threshold_source");
+      }
+    }
+  }
 }
 
 }  // namespace floorgrid

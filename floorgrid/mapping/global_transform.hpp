@@ -8,6 +8,8 @@ namespace floorgrid {
 /// The global-transform models `gt` (similarity), `gt-rigid` and `gt-affine` (thesis 3.2, 4.2):
 /// RANSAC over minimal samples, then a weighted least-squares refit on the inliers. Works on
 /// every pair (no reduction: RANSAC scores on subsets). Inverse and Jacobian are analytic.
+/// The inlier threshold is the given one or, unset, adapted to the pairs' noise (see
+/// ransac_transform); the model file records the one used (`parameters.ransac`).
 class GlobalTransformMapping : public PointMapping {
  public:
   /// A model of the family in `ransac.kind`.
@@ -36,6 +38,8 @@ class GlobalTransformMapping : public PointMapping {
 
  private:
   RansacOptions ransac_;
+  std::optional<double> threshold_used_;  // metres: the inlier threshold of the fit
+  std::string threshold_source_;          // "given" or "adaptive"
   Eigen::Matrix3d T_grid_plan_ = Eigen::Matrix3d::Identity();
   Eigen::Matrix3d T_plan_grid_ = Eigen::Matrix3d::Identity();
 };

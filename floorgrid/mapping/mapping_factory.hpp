@@ -1,6 +1,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,10 +21,12 @@ struct MappingOptions {
   std::string model = "auto";   ///< lc, gt, gt-rigid, gt-affine, ct, gp, gpgt, dt, tps, auto
   MappingCommonOptions common;  ///< shared: reduction budget, extrapolation distance, seed
   RansacOptions ransac;         ///< gt variants (and gpgt's global part); kind set by model
-  /// metres: gpgt's RANSAC inlier distance. Wider than gt's: its similarity only has to carry
-  /// the bulk of the map (the GP takes bends of several decimetres), not reject every pair
-  /// a bend moves.
-  double gpgt_inlier_threshold = 0.5;
+  /// metres: gpgt's RANSAC inlier distance (its other RANSAC options are `ransac`'s). Unset:
+  /// adapted to the pairs' noise like gt's; the residuals of a similarity on a bent map are its
+  /// bends, so the threshold widens with them and the similarity carries the bulk of the map
+  /// (the GP takes the bends). A fixed value should be wide for the same reason (0.5 m was the
+  /// default before).
+  std::optional<double> gpgt_inlier_threshold;
   LinearCombinationOptions lc;      ///< lc
   LocalTransformsOptions ct;        ///< ct
   GaussianProcessOptions gp;        ///< gp and gpgt

@@ -55,6 +55,21 @@ TEST(FitAndMapCommands, FitThenMapPointsPosesAndCsv) {
   EXPECT_EQ(model["frames"]["from"], "plan");
   EXPECT_EQ(model["parameters"]["T_grid_plan"].size(), 3u);
   EXPECT_TRUE(model["fit"]["cv_error_m"].is_number());
+  // The threshold adapted to the pairs' noise, unless one is given (auto: the same as none).
+  EXPECT_EQ(model["parameters"]["ransac"]["inlier_threshold_source"], "adaptive");
+  for (const auto& [option, source] : {std::pair<std::string, std::string>{"0.3", "given"},
+                                       std::pair<std::string, std::string>{"auto", "adaptive"}}) {
+    ASSERT_EQ(run_floorgrid("fit --pairs " + quoted(dir / "pairs.csv") +
+                            " --model gt --inlier-threshold " + option + " --out " +
+                            quoted(dir / "given.json"))
+                  .status,
+              0);
+    const auto given = nlohmann::json::parse(read_file(dir / "given.json"));
+    EXPECT_EQ(given["parameters"]["ransac"]["inlier_threshold_source"], source);
+    if (source == "given") {
+      EXPECT_EQ(given["parameters"]["ransac"]["inlier_threshold_m"], 0.3);
+    }
+  }
 
   const auto one = run_floorgrid("map --model " + quoted(dir / "model.json") + " 10,5 10,5,0.25");
   ASSERT_EQ(one.status, 0) << one.err;
@@ -174,6 +189,8 @@ TEST(FitAndMapCommands, BadOptionsAndNonPhysicalInputAreRefused) {
   expect_refused("fit --model gt --extrapolation nan" + pairs + out, {"'--extrapolation'", "nan"});
   expect_refused("fit --model gt --inlier-threshold -1" + pairs + out,
                  {"'--inlier-threshold'", "-1"});
+  expect_refused("fit --model gt --inlier-threshold 0.1m" + pairs + out,
+                 {"'--inlier-threshold'", "auto or a distance", "0.1m"});
   // The output would overwrite the input.
   expect_refused("fit --model gt" + pairs + " --out " + quoted(dir / "." / "pairs.csv"),
                  {"'--out'", "also the input"});

@@ -91,6 +91,7 @@ TEST(Ransac, RecoversEveryKindUnder60PercentOutliersWithin1cm) {
     const Synthetic data = make_pairs(truth, 5000, 0.6, 0.01, static_cast<std::uint64_t>(seed));
     RansacOptions options;
     options.kind = c.kind;
+    options.inlier_threshold = 0.10;  // given: AdaptiveThreshold* test the default
     const RansacResult result = ransac_transform(data.pairs, options);
     ASSERT_TRUE(result.ok) << result.message;
     EXPECT_LT(transform_error(result.estimate.T_grid_plan, truth), 0.01);
@@ -107,19 +108,127 @@ TEST(Ransac, RecoversEveryKindUnder60PercentOutliersWithin1cm) {
     EXPECT_LT(false_inliers, inliers / 100);
     EXPECT_EQ(result.inlier_count, found + false_inliers);
     EXPECT_LE(result.refit_passes, options.max_refit_passes);
+    EXPECT_FALSE(result.threshold_adaptive);
+    EXPECT_EQ(result.inlier_threshold, 0.10);
   }
+}
+
+// How many true inliers and outliers `result` marks as inliers.
+struct Classification {
+  std::size_t inliers = 0, found = 0, outliers = 0, false_inliers = 0;
+};
+
+Classification classify(const Synthetic& data, const RansacResult& result) {
+  Classification c;
+  for (std::size_t i = 0; i < data.is_outlier.size(); ++i) {
+    const bool marked = result.inlier_mask[i] != 0;
+    if (data.is_outlier[i]) {
+      ++c.outliers;
+      c.false_inliers += marked;
+    } else {
+      ++c.inliers;
+      c.found += marked;
+    }
+  }
+  return c;
+}
+
+TEST(Ransac, AdaptiveThresholdRecoversEveryKindAtCentimetreAndHalfMetreNoise) {
+  // 25% gross outliers. The least-squares fit of ~1500 inliers over the 100 x 60 m box is
+  // off by about 0.06 sigma at the corners; 0.25 sigma leaves room for the few pairs the
+  // threshold cuts. The threshold is 3 sigma: 98.9% of the inliers lie inside it.
+  int seed = 200;
+  for (const double sigma : {0.02, 0.5}) {
+    for (const Case c : {Case{TransformKind::similarity, false}, Case{TransformKind::rigid, true},
+                         Case{TransformKind::affine, false}}) {
+      SCOPED_TRACE(std::string(transform_kind_name(c.kind)) + " sigma " + std::to_string(sigma));
+      const Eigen::Matrix3d truth = make_transform(c.kind, c.mirrored, 0.4 * ++seed);
+      const Synthetic data = make_pairs(truth, 2000, 0.25, sigma, static_cast<std::uint64_t>(seed));
+      RansacOptions options;
+      options.kind = c.kind;
+      const RansacResult result = ransac_transform(data.pairs, options);
+      ASSERT_TRUE(result.ok) << result.message;
+      EXPECT_TRUE(result.threshold_adaptive);
+      EXPECT_LT(transform_error(result.estimate.T_grid_plan, truth), 0.25 * sigma);
+      EXPECT_EQ(result.estimate.reflected, c.mirrored);
+      EXPECT_NEAR(result.noise_sigma, sigma, 0.1 * sigma);
+      EXPECT_NEAR(result.inlier_threshold, 3.0 * sigma, 0.3 * sigma);
+      const Classification k = classify(data, result);
+      EXPECT_GE(static_cast<double>(k.found), 0.97 * static_cast<double>(k.inliers));
+      // Outliers spread over the map: within 3 sigma of T p by chance only (~0.1% at 0.5 m).
+      EXPECT_LE(static_cast<double>(k.false_inliers), 0.01 * static_cast<double>(k.outliers));
+      EXPECT_GT(result.scale_passes, 0);
+    }
+  }
+}
+
+TEST(Ransac, AdaptiveThresholdScalesWithTheNoise) {
+  // The same pairs with ten times the noise: ten times the threshold, within the spread of
+  // the estimate (the inlier sets differ by the pairs near the cut).
+  const Eigen::Matrix3d truth = make_transform(TransformKind::similarity, false, 0.9);
+  const RansacResult quiet = ransac_transform(make_pairs(truth, 3000, 0.3, 0.03, 21).pairs);
+  const RansacResult noisy = ransac_transform(make_pairs(truth, 3000, 0.3, 0.3, 21).pairs);
+  ASSERT_TRUE(quiet.ok && noisy.ok);
+  EXPECT_NEAR(noisy.inlier_threshold / quiet.inlier_threshold, 10.0, 0.5);
+  EXPECT_NEAR(noisy.noise_sigma / quiet.noise_sigma, 10.0, 0.5);
+  EXPECT_NEAR(quiet.inlier_threshold, 0.09, 0.009);
+}
+
+TEST(Ransac, AdaptiveThresholdRejectsBlundersAmongFewNoisyPairs) {
+  // Hand-picked pairs: 30 with 0.4 m of noise, three of them misplaced by 5 to 8 m.
+  const Eigen::Matrix3d truth = make_transform(TransformKind::similarity, false, -1.2);
+  Synthetic data = make_pairs(truth, 30, 0.0, 0.4, 22);
+  const Eigen::Vector2d blunders[] = {{5.0, 0.0}, {-4.0, 6.0}, {0.0, -8.0}};
+  for (int i = 0; i < 3; ++i) {
+    data.pairs.points_in_grid.col(7 * i + 3) += blunders[i];
+    data.is_outlier[static_cast<std::size_t>(7 * i + 3)] = true;
+  }
+  const RansacResult result = ransac_transform(data.pairs);
+  ASSERT_TRUE(result.ok) << result.message;
+  const Classification k = classify(data, result);
+  EXPECT_EQ(k.false_inliers, 0u);
+  EXPECT_GE(k.found, 25u);
+  // 27 inliers: the fit is off by about 0.4 sigma at the corners; an equal share of slack.
+  EXPECT_LT(transform_error(result.estimate.T_grid_plan, truth), 0.8 * 0.4);
+  EXPECT_GT(result.inlier_threshold, 0.8);
+  EXPECT_LT(result.inlier_threshold, 2.0);
+}
+
+TEST(Ransac, AdaptiveThresholdOnExactPairsStaysAboveRounding) {
+  const Eigen::Matrix3d truth = make_transform(TransformKind::affine, false, 0.3);
+  Synthetic data = make_pairs(truth, 500, 0.2, 0.0, 23);
+  RansacOptions options;
+  options.kind = TransformKind::affine;
+  const RansacResult result = ransac_transform(data.pairs, options);
+  ASSERT_TRUE(result.ok) << result.message;
+  const Classification k = classify(data, result);
+  EXPECT_EQ(k.found, k.inliers);
+  EXPECT_EQ(k.false_inliers, 0u);
+  EXPECT_LT(transform_error(result.estimate.T_grid_plan, truth), 1e-6);
+  EXPECT_GT(result.inlier_threshold, 0.0);
+  EXPECT_LT(result.inlier_threshold, 1e-3);
 }
 
 TEST(Ransac, LargeInputGoesThroughTheSubsets) {
   const Eigen::Matrix3d truth = make_transform(TransformKind::similarity, false, -2.0);
   const Synthetic data = make_pairs(truth, 200000, 0.3, 0.01, 7);
-  RansacOptions options;  // 200,000 pairs: scoring on 2,000, verification on 50,000
+  RansacOptions options;            // 200,000 pairs: scoring on 2,000, verification on 50,000
+  options.inlier_threshold = 0.10;  // given: 10 sigma, every inlier inside
   const RansacResult result = ransac_transform(data.pairs, options);
   ASSERT_TRUE(result.ok) << result.message;
   EXPECT_LT(transform_error(result.estimate.T_grid_plan, truth), 0.002);
   EXPECT_NEAR(static_cast<double>(result.inlier_count), 140000.0, 1500.0);
   EXPECT_LE(result.refit_passes, 3);
   EXPECT_EQ(inlier_indices(result).size(), result.inlier_count);
+
+  // Adaptive: sigma measured on the verification subset, 3 sigma keeps 1 - exp(-4.5) = 98.9%.
+  const RansacResult adaptive = ransac_transform(data.pairs);
+  ASSERT_TRUE(adaptive.ok) << adaptive.message;
+  EXPECT_LT(transform_error(adaptive.estimate.T_grid_plan, truth), 0.002);
+  EXPECT_NEAR(adaptive.noise_sigma, 0.01, 0.0002);
+  EXPECT_NEAR(static_cast<double>(adaptive.inlier_count), 140000.0 * (1.0 - std::exp(-4.5)),
+              1500.0);
+  EXPECT_LE(adaptive.refit_passes, 3);
 }
 
 TEST(Ransac, DeterministicForASeedWhateverTheThreads) {
@@ -265,6 +374,10 @@ TEST(Ransac, BadOptionsNameTheirField) {
   expect_field([](RansacOptions& o) { o.inlier_threshold = -1; }, "ransac.inlier_threshold");
   expect_field([](RansacOptions& o) { o.inlier_threshold = std::nan(""); },
                "ransac.inlier_threshold");
+  expect_field([](RansacOptions& o) { o.inlier_threshold = 0.0; }, "ransac.inlier_threshold");
+  expect_field([](RansacOptions& o) { o.threshold_sigmas = 0.0; }, "ransac.threshold_sigmas");
+  expect_field([](RansacOptions& o) { o.search_threshold_fraction = 2.0; },
+               "ransac.search_threshold_fraction");
   expect_field([](RansacOptions& o) { o.confidence = 1.0; }, "ransac.confidence");
   expect_field([](RansacOptions& o) { o.max_iterations = 0; }, "ransac.max_iterations");
   expect_field([](RansacOptions& o) { o.min_iterations = 20000; }, "ransac.min_iterations");

@@ -141,6 +141,41 @@ TEST(ModelFile, RefusesTextThatIsNotJsonOrNestedTooDeep) {
   expect_text_refused("[1, 2]", {"'format'", "not a floorgrid model file"});
 }
 
+TEST(ModelFile, GtRecordsTheInlierThresholdItUsed) {
+  const ReferencePairs pairs = io::read_pairs_csv(kFixtures / "pairs.csv");
+  MappingOptions options;
+  options.model = "gt";
+  const auto adaptive = make_mapping(options);
+  adaptive->fit(pairs);
+  Value file = adaptive->to_model_file();
+  Value& ransac = file["parameters"]["ransac"];
+  EXPECT_EQ(ransac["inlier_threshold_source"].as_string(), "adaptive");
+  const double used = ransac["inlier_threshold_m"].as_number();
+  EXPECT_EQ(used, file["fit"]["details"]["inlier_threshold_m"].as_number());
+  EXPECT_GT(used, 0.0);
+  EXPECT_NEAR(used, 3.0 * file["fit"]["details"]["noise_sigma_m"].as_number(), 1e-12);
+
+  options.ransac.inlier_threshold = 0.25;
+  const auto given = make_mapping(options);
+  given->fit(pairs);
+  Value given_file = given->to_model_file();
+  EXPECT_EQ(given_file["parameters"]["ransac"]["inlier_threshold_source"].as_string(), "given");
+  EXPECT_EQ(given_file["parameters"]["ransac"]["inlier_threshold_m"].as_number(), 0.25);
+
+  // Loaded and written again, the record stays; a file of an earlier build (a fixed 0.1 m and
+  // no source) loads as given; an unknown source is refused.
+  test::TempDir dir;
+  test::write_file(dir / "model.json", io::dump_json(file));
+  EXPECT_EQ(io::read_model(dir / "model.json")->to_model_file()["parameters"]["ransac"],
+            file["parameters"]["ransac"]);
+  Value old = io::read_model(kFixtures / "gt.json")->to_model_file();
+  EXPECT_EQ(old["parameters"]["ransac"]["inlier_threshold_m"].as_number(), 0.1);
+  EXPECT_EQ(old["parameters"]["ransac"]["inlier_threshold_source"].as_string(), "given");
+  Value bad = file;
+  bad["parameters"]["ransac"]["inlier_threshold_source"] = "guessed";
+  expect_refused(bad, {"'parameters.ransac.inlier_threshold_source'", "guessed"});
+}
+
 TEST(ModelFile, ASummaryWithoutFiguresStillLoads) {
   // `fit` wrote rms_m as null for pairs it could not measure; `map` must read what `fit` wrote.
   Value gp = fitted_file("gp");
