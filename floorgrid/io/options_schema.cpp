@@ -707,6 +707,26 @@ void visit(OptionVisitor& v, ScaleSearchOptions& o) {
           {.unit = "scans", .doc = "Scans profiled at most", .choices = {}});
 }
 
+void visit(OptionVisitor& v, MapRegistrationOptions& o) {
+  v.field("min_scale", o.min_scale,
+          {.unit = "", .doc = "Plan metres per world metre searched, from", .choices = {}});
+  v.field("max_scale", o.max_scale, {.unit = "", .doc = "to", .choices = {}});
+  v.field("scale_step", o.scale_step,
+          {.unit = "", .doc = "Relative step of the profile search's scales", .choices = {}});
+  v.field("profile_bin", o.profile_bin,
+          {.unit = "m", .doc = "Bin of the wall profiles", .choices = {}});
+  v.field("candidates", o.candidates,
+          {.unit = "", .doc = "Profile candidates scored in 2D and refined", .choices = {}});
+  v.field("max_points", o.max_points,
+          {.unit = "", .doc = "Wall points of each map scored in 2D", .choices = {}});
+  v.field("sigma", o.sigma,
+          {.unit = "m", .doc = "How near a wall a point must lie to count", .choices = {}});
+  v.field("free_violation_distance", o.free_violation_distance,
+          {.unit = "m",
+           .doc = "A plan wall this far inside the gridmap's free space counts against",
+           .choices = {}});
+}
+
 void visit(OptionVisitor& v, PlanLocationOptions& o) {
   v.field("visible_walls_only", o.visible_walls_only,
           {.unit = "",
@@ -717,6 +737,21 @@ void visit(OptionVisitor& v, PlanLocationOptions& o) {
   v.group("registration", "The submap's global search", [&] { visit(v, o.registration); });
   v.group("registration_likelihood", "The plan's likelihood field for the registration",
           [&] { visit(v, o.registration_likelihood); });
+  v.field("register_maps", o.register_maps,
+          {.unit = "",
+           .doc = "Without a scale: register the gridmap on the plan directly first (0.25-4x)",
+           .choices = {}});
+  v.group("map_registration", "That registration", [&] { visit(v, o.map_registration); });
+  v.field("map_min_score", o.map_min_score,
+          {.unit = "",
+           .doc = "Score the map registration needs to set the scale range",
+           .choices = {}});
+  v.field("map_scale_margin", o.map_scale_margin,
+          {.unit = "", .doc = "Scale range around its scale, 1 +- this (share)", .choices = {}});
+  v.field("map_clear_margin", o.map_clear_margin,
+          {.unit = "",
+           .doc = "Score margin over the runner-up for its scale and pose to be used as they are",
+           .choices = {}});
   v.field("given_start_sigma", o.given_start_sigma,
           {.unit = "m", .doc = "Plan filter's first spread around a given start", .choices = {}});
   v.field("given_start_heading_sigma", o.given_start_heading_sigma,

@@ -18,7 +18,11 @@ ParticleFilterOptions default_plan_filter_options() {
   options.recovery.min_beam_likelihood = 0.1;
   options.recovery.max_bad_scans = 10;
   options.convergence.min_beam_likelihood = 0.2;
-  options.convergence.min_ess_ratio = 0.01;
+  // No effective-sample-size test: on sparse logs (a scan every metre and 10-20 degrees) the
+  // motion spreads the particles far wider than one sharp scan's posterior, so the weights
+  // collapse onto a few particles in the right place (ESS < 1%) while the cloud is tight and
+  // explains the scan; the spread and the beam likelihood already say whether it is sure.
+  options.convergence.min_ess_ratio = 0.0;
   return options;
 }
 
@@ -26,7 +30,7 @@ ParticleFilterOptions default_grid_filter_options() {
   ParticleFilterOptions options;
   options.recovery.max_augmented_fraction = 0.0;
   options.recovery.min_fast_slow_ratio = 0.0;
-  options.convergence.min_ess_ratio = 0.01;
+  options.convergence.min_ess_ratio = 0.0;  // as the plan filter's
   // The gridmap holds what the laser sees: a filter in the right place explains most of a
   // scan (about 0.9 of the mean beam likelihood), one in a look-alike place far less.
   options.convergence.min_beam_likelihood = 0.5;
@@ -127,7 +131,7 @@ DualLocalization localize_dual(const DualLocalizerInputs& inputs,
   PlanLocation location = locate_run_on_plan(maps, inputs, gridmap, options, result);
 
   // 3. Search the plan scale.
-  if (!inputs.plan_scale)
+  if (!inputs.plan_scale && !location.from_maps)
     search_plan_scale(maps, inputs.log, options, location, result);
 
   // 4 and 5. Track the plan, checked against the gridmap filter; refit the scale.

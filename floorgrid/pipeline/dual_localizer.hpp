@@ -16,6 +16,7 @@
 #include "floorgrid/maps/vector_floorplan.hpp"
 #include "floorgrid/maps/visible_walls.hpp"
 #include "floorgrid/pipeline/filter_runner.hpp"
+#include "floorgrid/pipeline/map_registration.hpp"
 #include "floorgrid/pipeline/outlier_scans.hpp"
 #include "floorgrid/pipeline/plan_registration.hpp"
 #include "floorgrid/robot/robot_log.hpp"
@@ -101,6 +102,17 @@ struct PlanLocationOptions {
                                                  .max_distance = 2.0,
                                                  .beam_weight = 1.0,
                                                  .unknown_is_free = true};
+  /// Without a scale: the gridmap is first registered on the plan directly (register_maps,
+  /// scale 0.25-4x, any rotation). When its score is at least map_min_score and its scale lies
+  /// outside scale_search.range, the search covers its scale times 1 +- map_scale_margin
+  /// instead (inside, the search runs over its usual range, which it resolves more finely).
+  bool register_maps = true;
+  MapRegistrationOptions map_registration;  ///< that registration
+  double map_min_score = 0.25;              ///< score (on walls - in free space) it needs
+  double map_scale_margin = 0.08;           ///< share: the scale range around its scale
+  /// When its best beats the runner-up by this much, its scale and pose are used as they are
+  /// (the plan filter starts there, no scale search; the scale is refitted on the pairs' scans).
+  double map_clear_margin = 0.15;
   /// Plan metres and radians: the plan filter's first spread around a given start pose...
   double given_start_sigma = 0.2;
   double given_start_heading_sigma = 0.1;  ///< radians
@@ -291,6 +303,8 @@ struct DualLocalization {
   std::size_t plan_start_scan = 0;     ///< the scan the plan filter started tracking from
   /// Where the run lies on the plan (the gridmap filter's poses -> plan poses).
   std::optional<PlanRegistrationResult> registration;
+  /// The gridmap registered on the plan directly, when the scale was not given.
+  std::optional<MapRegistration> map_registration;
   DivergenceCount plan_divergences;  ///< the plan filter's, while localizing
   DivergenceCount grid_divergences;  ///< the gridmap filter's
   std::size_t plan_corrections = 0;  ///< improved-proposal corrections of the plan filter

@@ -10,14 +10,26 @@ namespace {
 // cost nothing.
 constexpr std::size_t kProgressEveryScans = 25;
 
+// A plan whose "rooms" would leave more than this share of its walls unseen is not drawn as
+// closed rooms: its walls are all used.
+constexpr double kMaxHiddenWallShare = 0.5;
+
 /// The plan as a robot inside sees it (the unseen faces of walls drawn as two lines dropped).
 VisibleWalls find_visible_walls(const OccupancyGrid& plan, const PlanLocationOptions& options,
                                 std::vector<std::string>& notes) {
   if (!options.visible_walls_only)
     return {};
   VisibleWalls visible = visible_walls(plan, options.visible);
-  if (!visible.applied)
+  if (!visible.applied) {
     notes.push_back("the plan has no closed inside: every drawn wall is used");
+  } else if (double(visible.hidden) > kMaxHiddenWallShare * double(visible.walls)) {
+    // An open, gappy drawing (walls only where someone drew them) has pockets for rooms:
+    // hiding most of its walls would leave the filter nothing to see.
+    notes.push_back("the plan's rooms are not closed (" + std::to_string(visible.hidden) + " of " +
+                    std::to_string(visible.walls) +
+                    " wall cells would be unseen from inside): every drawn wall is used");
+    return {};
+  }
   return visible;
 }
 

@@ -1,5 +1,10 @@
 #include "floorgrid/pipeline/plan_location.hpp"
 
+#include <fmt/format.h>
+
+#include <numbers>
+#include <optional>
+
 #include <algorithm>
 #include <chrono>
 #include <vector>
@@ -38,12 +43,55 @@ TrackingStart plan_start(const Pose2& pose, double position_sigma, double headin
                        .scale_sigma = scale_sigma};
 }
 
+namespace {
+
+// The scales to search: around the direct registration of the gridmap on the plan when it is
+// clear, else the options' range.
+ScaleRange scale_range(const DualMaps& maps, const DualLocalizerInputs& inputs,
+                       const DualLocalizerOptions& options, DualLocalization& result,
+                       std::optional<MapSimilarity>& clear) {
+  const PlanLocationOptions& step = options.plan_location;
+  if (inputs.plan_scale || !step.register_maps)
+    return options.scale_search.range;
+  const MapRegistration reg = register_maps(maps.gridmap(), inputs.plan, step.map_registration);
+  result.map_registration = reg;
+  if (!reg.found || reg.best.score < step.map_min_score) {
+    result.notes.push_back(
+        fmt::format("the gridmap could not be registered on the plan directly ({} candidates, best "
+                    "score {:.2f}, needs "
+                    "{:.2f}): the scale is searched over {:.2f}-{:.2f}",
+                    reg.candidates, reg.best.score, step.map_min_score,
+                    options.scale_search.range.min, options.scale_search.range.max));
+    return options.scale_search.range;
+  }
+  const double scale = 1.0 / reg.best.transform.scale;  // world metres per plan metre
+  result.notes.push_back(fmt::format(
+      "gridmap registered on the plan: scale {:.4f}, turned {:.1f} deg, score {:.2f} ({:.0f}% "
+      "of the gridmap's walls on the plan's, {:.0f}% of the plan's walls in free space; "
+      "runner-up {:.2f} at scale {:.4f}) in {:.1f} s",
+      scale, reg.best.transform.theta * 180.0 / std::numbers::pi, reg.best.score,
+      100.0 * reg.best.on_walls, 100.0 * reg.best.in_free_space, reg.runner_up.score,
+      1.0 / reg.runner_up.transform.scale, reg.seconds));
+  const ScaleRange& usual = options.scale_search.range;
+  if (scale >= usual.min && scale <= usual.max) {
+    // Within the usual range the plan filter's search finds the scale more precisely than one
+    // similarity of two maps bent against each other: it runs as it would without this.
+    return usual;
+  }
+  if (reg.best.score - reg.runner_up.score >= step.map_clear_margin)
+    clear = reg.best.transform;
+  return {scale / (1.0 + step.map_scale_margin), scale * (1.0 + step.map_scale_margin)};
+}
+
+}  // namespace
+
 PlanLocation locate_run_on_plan(const DualMaps& maps, const DualLocalizerInputs& inputs,
                                 const GridmapLocalization& gridmap,
                                 const DualLocalizerOptions& options, DualLocalization& result) {
   const auto clock = std::chrono::steady_clock::now();
-  const ScaleRange& range = options.scale_search.range;
   const PlanLocationOptions& step = options.plan_location;
+  std::optional<MapSimilarity> clear;
+  const ScaleRange range = scale_range(maps, inputs, options, result, clear);
   PlanLocation location;
   location.given = gridmap.start;
   location.scale = inputs.plan_scale.value_or(0.5 * (range.min + range.max));
@@ -51,7 +99,21 @@ PlanLocation locate_run_on_plan(const DualMaps& maps, const DualLocalizerInputs&
       inputs.plan_scale ? 0.0 : options.scale_search.initial_sigma_share * (range.max - range.min);
   const Pose2 grid_start =
       location.given ? location.given->grid : result.scans[*gridmap.first_converged].grid.pose;
-  if (location.given) {
+  if (!location.given && clear) {
+    // The maps agree on one similarity: the plan filter starts where it puts the gridmap
+    // filter's pose, at its scale.
+    location.from_maps = true;
+    location.scale = 1.0 / clear->scale;
+    location.scale_sigma = 0.0;
+    location.registration = PlanRegistration(grid_start, clear->apply(grid_start), location.scale);
+    location.start_sigma = step.given_start_sigma;
+    location.start_heading_sigma = step.given_start_heading_sigma;
+    result.plan_start_scan = result.grid_start_scan;
+    result.plan_scale_estimated = true;
+    result.plan_scale_search = location.scale;
+    result.plan_scale_search_std = location.scale * 0.005;
+    result.plan_scale_std = result.plan_scale_search_std;
+  } else if (location.given) {
     location.registration = registration_of(*location.given, location.scale);
     location.start_sigma = step.given_start_sigma;
     location.start_heading_sigma = step.given_start_heading_sigma;

@@ -14,6 +14,9 @@ struct PlanLocation {
   double scale_sigma = 0.0;          ///< its spread for the scale search (0 when given)
   double start_sigma = 0.0;          ///< plan metres: the plan filter's first spread
   double start_heading_sigma = 0.0;  ///< radians
+  /// The scale and the registration came from registering the gridmap on the plan directly,
+  /// clearly enough that the plan filter's scale search is not needed.
+  bool from_maps = false;
 };
 
 /// Step 2 of localize_dual: the plan is related to the run from the given start poses or,

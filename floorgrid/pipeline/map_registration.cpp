@@ -1,0 +1,367 @@
+#include "floorgrid/pipeline/map_registration.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numbers>
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "floorgrid/maps/distance_field.hpp"
+
+namespace floorgrid {
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr double kDegree = kPi / 180.0;
+
+// The centres of a grid's occupied cells, evenly thinned to at most `max_points`.
+std::vector<Eigen::Vector2d> wall_points(const OccupancyGrid& grid, std::size_t max_points) {
+  std::vector<Eigen::Vector2d> all;
+  for (int iy = 0; iy < grid.height(); ++iy) {
+    for (int ix = 0; ix < grid.width(); ++ix) {
+      if (grid.state(ix, iy) == CellState::occupied)
+        all.push_back(grid.geometry().cell_center(ix, iy));
+    }
+  }
+  if (max_points == 0 || all.size() <= max_points)
+    return all;
+  std::vector<Eigen::Vector2d> thinned;
+  thinned.reserve(max_points);
+  const double stride = double(all.size()) / double(max_points);
+  for (std::size_t i = 0; i < max_points; ++i)
+    thinned.push_back(all[static_cast<std::size_t>(double(i) * stride)]);
+  return thinned;
+}
+
+// The walls' dominant direction modulo 90 degrees (radians in [0, pi/2)), from the gradient of
+// the occupied cells, and how strongly it dominates (the peak's share over a uniform spread).
+struct Direction {
+  double angle = 0.0;
+  double strength = 0.0;
+};
+
+Direction dominant_direction(const OccupancyGrid& grid) {
+  cv::Mat mask(grid.height(), grid.width(), CV_32FC1, cv::Scalar(0));
+  for (int iy = 0; iy < grid.height(); ++iy) {
+    auto* row = mask.ptr<float>(iy);
+    for (int ix = 0; ix < grid.width(); ++ix)
+      row[ix] = grid.state(ix, iy) == CellState::occupied ? 1.0f : 0.0f;
+  }
+  cv::GaussianBlur(mask, mask, {5, 5}, 1.0);
+  cv::Mat gx, gy;
+  cv::Sobel(mask, gx, CV_32F, 1, 0);
+  cv::Sobel(mask, gy, CV_32F, 0, 1);
+  constexpr int kBins = 90;
+  std::vector<double> histogram(kBins, 0.0);
+  double total = 0.0;
+  for (int y = 0; y < mask.rows; ++y) {
+    const float* rx = gx.ptr<float>(y);
+    const float* ry = gy.ptr<float>(y);
+    for (int x = 0; x < mask.cols; ++x) {
+      const double magnitude = std::hypot(rx[x], ry[x]);
+      if (magnitude < 1e-3)
+        continue;
+      double a = std::atan2(ry[x], rx[x]) + grid.geometry().origin.theta;
+      a = std::fmod(std::fmod(a, kPi / 2) + kPi / 2, kPi / 2);
+      histogram[static_cast<std::size_t>(a / (kPi / 2) * kBins) % kBins] += magnitude;
+      total += magnitude;
+    }
+  }
+  Direction best;
+  if (total <= 0.0)
+    return best;
+  for (int b = 0; b < kBins; ++b) {
+    double window = 0.0;  // +-2 degrees, circular
+    for (int d = -2; d <= 2; ++d)
+      window += histogram[static_cast<std::size_t>((b + d + kBins) % kBins)];
+    const double strength = window / total * kBins / 5.0;
+    if (strength > best.strength)
+      best = {(b + 0.5) * (kPi / 2) / kBins, strength};
+  }
+  return best;
+}
+
+Eigen::Vector2d rotate(const Eigen::Vector2d& p, double angle) {
+  return rotation_2d(angle) * p;
+}
+
+// A 1-D profile of point coordinates, `bin` wide, starting at `start`, `bins` long; each point
+// adds one to its bin, then the counts are square-rooted (long walls should not drown the rest)
+// and smoothed over a bin either side.
+cv::Mat profile(const std::vector<double>& coordinates, double start, double bin, int bins) {
+  cv::Mat counts(1, bins, CV_32FC1, cv::Scalar(0));
+  auto* c = counts.ptr<float>(0);
+  for (const double x : coordinates) {
+    const auto i = static_cast<long>(std::floor((x - start) / bin));
+    if (i >= 0 && i < bins)
+      c[i] += 1.0f;
+  }
+  for (int i = 0; i < bins; ++i)
+    c[i] = std::sqrt(c[i]);
+  cv::Mat smooth;
+  cv::GaussianBlur(counts, smooth, {5, 1}, 1.0, 0.0, cv::BORDER_CONSTANT);
+  return smooth;
+}
+
+struct AxisMatch {
+  double value = -1.0;  // normalized correlation
+  double shift = 0.0;   // world metres: plan coordinate / scale = grid coordinate + shift
+};
+
+// The shift of one axis's grid coordinates that best matches the plan's coordinates divided by
+// `scale`, by normalized cross-correlation of their profiles.
+AxisMatch match_axis(const std::vector<double>& grid, double grid_min, int grid_bins,
+                     const cv::Mat& grid_profile, const std::vector<double>& plan_scaled,
+                     double plan_min, double plan_max, double bin) {
+  const double start = plan_min - grid_bins * bin;
+  const int bins = static_cast<int>(std::ceil((plan_max - start) / bin)) + grid_bins + 1;
+  (void)grid;
+  const cv::Mat plan_profile = profile(plan_scaled, start, bin, bins);
+  cv::Mat result;
+  cv::matchTemplate(plan_profile, grid_profile, result, cv::TM_CCOEFF_NORMED);
+  double best = 0.0;
+  cv::Point at;
+  cv::minMaxLoc(result, nullptr, &best, nullptr, &at);
+  return {best, start + at.x * bin - grid_min};
+}
+
+struct Candidate {
+  MapSimilarity transform;
+  double profile_score = 0.0;
+};
+
+// The 2-D score of a transform (see register_maps).
+class Scorer {
+ public:
+  Scorer(const OccupancyGrid& gridmap, const OccupancyGrid& plan, const MapRegistrationOptions& o)
+      : gridmap_(gridmap),
+        plan_field_(occupied_distance_field(plan, 5.0)),
+        grid_field_(occupied_distance_field(gridmap, 2.0)),
+        grid_points_(wall_points(gridmap, o.max_points)),
+        plan_points_(wall_points(plan, o.max_points)),
+        options_(o) {}
+
+  bool usable() const { return grid_points_.size() >= 10 && plan_points_.size() >= 10; }
+  const std::vector<Eigen::Vector2d>& grid_points() const { return grid_points_; }
+
+  ScoredSimilarity score(const MapSimilarity& t, double sigma) const {
+    ScoredSimilarity s{t, 0.0, 0.0, 0.0};
+    double on = 0.0;
+    for (const Eigen::Vector2d& g : grid_points_) {
+      const double d = plan_field_.at(t.apply(g)) / t.scale;
+      on += std::exp(-0.5 * d * d / (sigma * sigma));
+    }
+    s.on_walls = on / double(grid_points_.size());
+    std::size_t observed = 0, violations = 0;
+    for (const Eigen::Vector2d& p : plan_points_) {
+      const Eigen::Vector2d g = t.inverse(p);
+      int ix = 0, iy = 0;
+      if (!gridmap_.geometry().cell_of(g, ix, iy) || gridmap_.state(ix, iy) == CellState::unknown)
+        continue;
+      ++observed;
+      if (gridmap_.state(ix, iy) == CellState::free &&
+          grid_field_.at(ix, iy) > options_.free_violation_distance) {
+        ++violations;
+      }
+    }
+    s.in_free_space = observed ? double(violations) / double(observed) : 0.0;
+    s.score = s.on_walls - s.in_free_space;
+    return s;
+  }
+
+  // Pattern search over log scale, angle and translation, steps halving from coarse to fine.
+  ScoredSimilarity refine(const MapSimilarity& start, double sigma) const {
+    ScoredSimilarity best = score(start, sigma);
+    double step_log = 0.03, step_angle = 2.0 * kDegree, step_t = 4.0 * sigma * start.scale;
+    for (int round = 0; round < 12; ++round) {
+      bool improved = true;
+      for (int moves = 0; improved && moves < 40; ++moves) {
+        improved = false;
+        for (int axis = 0; axis < 4; ++axis) {
+          for (const double sign : {-1.0, 1.0}) {
+            MapSimilarity t = best.transform;
+            if (axis == 0) {
+              t.scale *= std::exp(sign * step_log);
+              if (t.scale < options_.min_scale || t.scale > options_.max_scale)
+                continue;
+            }
+            if (axis == 1)
+              t.theta += sign * step_angle;
+            if (axis == 2)
+              t.translation.x() += sign * step_t * t.scale / start.scale;
+            if (axis == 3)
+              t.translation.y() += sign * step_t * t.scale / start.scale;
+            // A turn or a scale about the gridmap walls' centre, not the frame's origin.
+            if (axis <= 1)
+              t.translation += best.transform.apply(centre_) - t.apply(centre_);
+            const ScoredSimilarity s = score(t, sigma);
+            if (s.score > best.score + 1e-9) {
+              best = s;
+              improved = true;
+            }
+          }
+        }
+      }
+      step_log *= 0.5;
+      step_angle *= 0.5;
+      step_t *= 0.5;
+    }
+    return best;
+  }
+
+  void set_centre(const Eigen::Vector2d& c) { centre_ = c; }
+
+ private:
+  const OccupancyGrid& gridmap_;
+  DistanceField plan_field_;
+  DistanceField grid_field_;
+  std::vector<Eigen::Vector2d> grid_points_;
+  std::vector<Eigen::Vector2d> plan_points_;
+  MapRegistrationOptions options_;
+  Eigen::Vector2d centre_ = Eigen::Vector2d::Zero();
+};
+
+// Candidates from the wall profiles: for every turn and scale, the best shift along each axis.
+std::vector<Candidate> profile_candidates(const std::vector<Eigen::Vector2d>& grid_all,
+                                          const std::vector<Eigen::Vector2d>& plan_all,
+                                          const Direction& grid_dir, const Direction& plan_dir,
+                                          const MapRegistrationOptions& o) {
+  const bool manhattan = grid_dir.strength > 2.0 && plan_dir.strength > 2.0;
+  const int turns = manhattan ? 4 : 36;
+  const double turn_step = manhattan ? kPi / 2 : 10.0 * kDegree;
+  const double grid_angle = manhattan ? grid_dir.angle : 0.0;
+  const double plan_angle = manhattan ? plan_dir.angle : 0.0;
+  const double bin = o.profile_bin;
+
+  std::vector<double> plan_x, plan_y;
+  for (const Eigen::Vector2d& p : plan_all) {
+    const Eigen::Vector2d a = rotate(p, -plan_angle);
+    plan_x.push_back(a.x());
+    plan_y.push_back(a.y());
+  }
+  const auto [px_min, px_max] = std::minmax_element(plan_x.begin(), plan_x.end());
+  const auto [py_min, py_max] = std::minmax_element(plan_y.begin(), plan_y.end());
+
+  std::vector<Candidate> all;
+  const int scales =
+      static_cast<int>(std::ceil(std::log(o.max_scale / o.min_scale) / o.scale_step)) + 1;
+  for (int k = 0; k < turns; ++k) {
+    const double turn = k * turn_step;
+    std::vector<double> gx, gy;
+    for (const Eigen::Vector2d& g : grid_all) {
+      const Eigen::Vector2d r = rotate(rotate(g, -grid_angle), turn);
+      gx.push_back(r.x());
+      gy.push_back(r.y());
+    }
+    const double gx_min = *std::min_element(gx.begin(), gx.end());
+    const double gy_min = *std::min_element(gy.begin(), gy.end());
+    const int gx_bins =
+        static_cast<int>(std::ceil((*std::max_element(gx.begin(), gx.end()) - gx_min) / bin)) + 1;
+    const int gy_bins =
+        static_cast<int>(std::ceil((*std::max_element(gy.begin(), gy.end()) - gy_min) / bin)) + 1;
+    const cv::Mat gx_profile = profile(gx, gx_min, bin, gx_bins);
+    const cv::Mat gy_profile = profile(gy, gy_min, bin, gy_bins);
+    for (int i = 0; i < scales; ++i) {
+      const double s = o.min_scale * std::exp(i * o.scale_step);
+      if (s > o.max_scale * (1 + 1e-9))
+        break;
+      std::vector<double> sx(plan_x.size()), sy(plan_y.size());
+      for (std::size_t j = 0; j < plan_x.size(); ++j) {
+        sx[j] = plan_x[j] / s;
+        sy[j] = plan_y[j] / s;
+      }
+      const AxisMatch mx =
+          match_axis(gx, gx_min, gx_bins, gx_profile, sx, *px_min / s, *px_max / s, bin);
+      const AxisMatch my =
+          match_axis(gy, gy_min, gy_bins, gy_profile, sy, *py_min / s, *py_max / s, bin);
+      Candidate c;
+      c.transform.scale = s;
+      c.transform.theta = plan_angle + turn - grid_angle;
+      c.transform.translation = rotate(Eigen::Vector2d(mx.shift, my.shift) * s, plan_angle);
+      c.profile_score = mx.value + my.value;
+      all.push_back(c);
+    }
+  }
+  std::sort(all.begin(), all.end(), [](const Candidate& a, const Candidate& b) {
+    return a.profile_score > b.profile_score;
+  });
+  // The best few, no two of the same turn within 5% of scale.
+  std::vector<Candidate> kept;
+  for (const Candidate& c : all) {
+    const bool near = std::any_of(kept.begin(), kept.end(), [&](const Candidate& k) {
+      return std::abs(std::remainder(k.transform.theta - c.transform.theta, 2 * kPi)) < 0.1 &&
+             std::abs(std::log(k.transform.scale / c.transform.scale)) < 0.05;
+    });
+    if (!near)
+      kept.push_back(c);
+    if (static_cast<int>(kept.size()) >= o.candidates)
+      break;
+  }
+  return kept;
+}
+
+bool distinct(const MapSimilarity& a, const MapSimilarity& b, const Eigen::Vector2d& centre) {
+  if (std::abs(std::log(a.scale / b.scale)) > 0.05)
+    return true;
+  if (std::abs(std::remainder(a.theta - b.theta, 2 * kPi)) > 10.0 * kDegree)
+    return true;
+  return (a.apply(centre) - b.apply(centre)).norm() / a.scale > 2.0;
+}
+
+}  // namespace
+
+Eigen::Vector2d MapSimilarity::apply(const Eigen::Vector2d& g) const {
+  return scale * (rotation_2d(theta) * g) + translation;
+}
+
+Eigen::Vector2d MapSimilarity::inverse(const Eigen::Vector2d& p) const {
+  return rotation_2d(-theta) * (p - translation) / scale;
+}
+
+Pose2 MapSimilarity::apply(const Pose2& pose) const {
+  const Eigen::Vector2d p = apply(pose.translation());
+  return {p.x(), p.y(), normalize_angle(pose.theta + theta)};
+}
+
+MapRegistration register_maps(const OccupancyGrid& gridmap, const OccupancyGrid& plan,
+                              const MapRegistrationOptions& options) {
+  const auto clock = std::chrono::steady_clock::now();
+  MapRegistration result;
+  Scorer scorer(gridmap, plan, options);
+  if (!scorer.usable())
+    return result;
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+  for (const Eigen::Vector2d& g : scorer.grid_points())
+    centre += g;
+  centre /= double(scorer.grid_points().size());
+  scorer.set_centre(centre);
+
+  const std::vector<Eigen::Vector2d> grid_all = wall_points(gridmap, 40000);
+  const std::vector<Eigen::Vector2d> plan_all = wall_points(plan, 40000);
+  const std::vector<Candidate> candidates = profile_candidates(
+      grid_all, plan_all, dominant_direction(gridmap), dominant_direction(plan), options);
+  std::vector<ScoredSimilarity> refined;
+  for (const Candidate& c : candidates) {
+    const ScoredSimilarity coarse = scorer.refine(c.transform, 4.0 * options.sigma);
+    refined.push_back(scorer.refine(coarse.transform, options.sigma));
+  }
+  result.candidates = refined.size();
+  std::sort(refined.begin(), refined.end(),
+            [](const ScoredSimilarity& a, const ScoredSimilarity& b) { return a.score > b.score; });
+  if (refined.empty())
+    return result;
+  result.found = true;
+  result.best = refined.front();
+  for (const ScoredSimilarity& s : refined) {
+    if (distinct(s.transform, result.best.transform, centre)) {
+      result.runner_up = s;
+      break;
+    }
+  }
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock).count();
+  return result;
+}
+
+}  // namespace floorgrid

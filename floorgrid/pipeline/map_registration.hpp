@@ -1,0 +1,70 @@
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "floorgrid/geometry/pose2.hpp"
+#include "floorgrid/maps/occupancy_grid.hpp"
+
+namespace floorgrid {
+
+/// How the gridmap is registered on the plan directly, before any filter runs.
+struct MapRegistrationOptions {
+  /// Plan metres per world metre searched: [1 / max_scale, 1 / min_scale] of SPEC's
+  /// floorplan_scale, so 0.25-4 covers a plan scanned or exported at any resolution.
+  double min_scale = 0.25;
+  double max_scale = 4.0;
+  double scale_step = 0.015;      ///< relative step of the scale lattice of the profile search
+  double profile_bin = 0.25;      ///< world metres per bin of the wall profiles
+  int candidates = 12;            ///< profile candidates verified in 2D and refined
+  std::size_t max_points = 3000;  ///< wall points of each map used in 2D, evenly thinned
+  double sigma = 0.15;            ///< world metres: how near a wall a point must lie to count
+  /// A plan wall that the transform puts more than this (world metres) inside the gridmap's
+  /// observed free space is a wall the robot would have seen: it counts against the transform.
+  double free_violation_distance = 0.4;
+};
+
+/// A similarity from the gridmap frame into the plan frame: p = scale R(theta) g + t.
+struct MapSimilarity {
+  double scale = 1.0;  ///< plan metres per world metre (1 / floorplan_scale)
+  double theta = 0.0;  ///< radians
+  Eigen::Vector2d translation = Eigen::Vector2d::Zero();  ///< plan metres
+
+  /// A gridmap point in the plan.
+  Eigen::Vector2d apply(const Eigen::Vector2d& g) const;
+  /// A plan point in the gridmap.
+  Eigen::Vector2d inverse(const Eigen::Vector2d& p) const;
+  /// A gridmap pose in the plan (heading turned by theta).
+  Pose2 apply(const Pose2& pose) const;
+};
+
+/// One registration with its score.
+struct ScoredSimilarity {
+  MapSimilarity transform;
+  double score = 0.0;     ///< on_walls - in_free_space, in [-1, 1]
+  double on_walls = 0.0;  ///< mean closeness of the gridmap's walls to the plan's walls, [0, 1]
+  double in_free_space = 0.0;  ///< share of the plan's walls (over the gridmap's observed area)
+                               ///< lying in space the gridmap saw free
+};
+
+/// What register_maps found.
+struct MapRegistration {
+  bool found = false;     ///< a transform was scored (false: a map had no walls)
+  ScoredSimilarity best;  ///< the best transform after refinement
+  /// The best candidate of another scale (beyond 5%) or pose (beyond 2 m or 10 degrees): how
+  /// clearly the best won.
+  ScoredSimilarity runner_up;
+  std::size_t candidates = 0;  ///< verified in 2D
+  double seconds = 0.0;        ///< wall clock
+};
+
+/// Registers the gridmap on the plan over scale, rotation and translation, coarse to fine:
+/// both maps' walls are turned to their dominant direction; their wall profiles along both axes
+/// are correlated over the scale lattice and every shift, for the four quarter turns (and 36
+/// turns when a map has no dominant direction); the best candidates are scored in 2D (the
+/// gridmap's walls near the plan's, minus the plan's walls in space the gridmap saw free) and
+/// refined by a pattern search over scale, angle and translation.
+MapRegistration register_maps(const OccupancyGrid& gridmap, const OccupancyGrid& plan,
+                              const MapRegistrationOptions& options = {});
+
+}  // namespace floorgrid
