@@ -245,6 +245,15 @@ LogDataset simulate_from_log(const RobotLog& log, const LogDatasetOptions& optio
     throw InputError("the log has no laser scan to map", "", 0, "log");
   LogDataset d;
   d.log = log;
+  // A log read in line order (every stamp 0) gets stamps 1, 2, ... s in that order, so that
+  // the dataset's log is a valid CARMEN log.
+  if (std::any_of(d.log.scans.begin(), d.log.scans.end(),
+                  [](const LaserScan& s) { return !(s.timestamp > 0.0); })) {
+    for (std::size_t i = 0; i < d.log.scans.size(); ++i)
+      d.log.scans[i].timestamp = double(i + 1);
+    for (std::size_t i = 0; i < d.log.odometry.size(); ++i)
+      d.log.odometry[i].timestamp = double(i + 1);
+  }
   d.options = options;
   LogDatasetOptions& o = d.options;
   LogDatasetStatistics& s = d.statistics;

@@ -188,6 +188,15 @@ TEST(LogDataset, SameSeedSameDatasetAndChoicesDrawnInRange) {
   }
 }
 
+TEST(LogDataset, ALogWithoutTimestampsGetsThemInLineOrder) {
+  RobotLog log = shared_log();
+  for (LaserScan& scan : log.scans)
+    scan.timestamp = 0.0;
+  const LogDataset d = simulate_from_log(log, fixed(1.0, 0.0, 0.0));
+  for (std::size_t i = 0; i < d.log.scans.size(); ++i)
+    EXPECT_EQ(d.log.scans[i].timestamp, double(i + 1));
+}
+
 TEST(LogDataset, BadOptionsAndEmptyLogsAreRefusedNamingTheField) {
   LogDatasetOptions o;
   o.plan_scale = -1.0;
