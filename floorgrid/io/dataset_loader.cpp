@@ -7,6 +7,7 @@
 
 #include "floorgrid/core/error.hpp"
 #include "floorgrid/io/carmen_log.hpp"
+#include "floorgrid/io/image_io.hpp"
 #include "floorgrid/io/map_io.hpp"
 #include "floorgrid/io/pairs_csv.hpp"
 #include "floorgrid/io/system_memory.hpp"
@@ -51,6 +52,11 @@ void crop_large_map(OccupancyGrid& grid, const std::string& what, const DatasetL
   grid = crop(grid, box);
 }
 
+// A map needs at least this many occupied cells, and this share of its known cells, to
+// localize in.
+constexpr std::size_t kMinOccupiedCells = 10;
+constexpr double kMinOccupiedShare = 5e-4;
+
 /// Refuses a map without a free cell: no filter could be placed on it.
 void require_free_space(const OccupancyGrid& grid, const std::filesystem::path& file,
                         const std::string& field) {
@@ -60,6 +66,46 @@ void require_free_space(const OccupancyGrid& grid, const std::filesystem::path& 
         "negate and mode)",
         file.string(), 0, field);
   }
+}
+
+/// Refuses a map in which the occupancy rule finds (almost) no occupied cell: no filter could
+/// tell one place from another. Names the file, the darkest pixel's occupancy and the rule's
+/// thresholds (a real SLAM map saved with thresholds above its walls' grey was blamed on its
+/// resolution and origin before).
+void require_walls(const LoadedMap& map, const std::string& field) {
+  const CellCounts cells = map.grid.counts();
+  const std::size_t known = cells.occupied + cells.free;
+  if (cells.occupied >= kMinOccupiedCells &&
+      double(cells.occupied) >= kMinOccupiedShare * double(known)) {
+    return;
+  }
+  const MapMetadata& meta = map.metadata;
+  std::string darkest;
+  try {
+    const GreyImage image = read_grey_image(map.image_path);
+    double most = -1.0;
+    for (std::size_t i = 0; i < image.level.size(); ++i) {
+      if (!image.alpha.empty() && image.alpha[i] == 0)
+        continue;
+      const double brightness = double(image.level[i]) / double(image.max_level);
+      most = std::max(most, meta.negate ? brightness : 1.0 - brightness);
+    }
+    if (most >= 0.0) {
+      darkest = fmt::format("; its {} pixel has occupancy {:.3f}",
+                            meta.negate ? "brightest" : "darkest", most);
+    }
+  } catch (const InputError&) {
+    // The counts alone still say what is wrong.
+  }
+  throw InputError(
+      fmt::format("the occupancy rule finds {} occupied cells of {} known ({} x {}){}, and "
+                  "a cell is occupied above occupied_thresh {} (free below free_thresh {}, "
+                  "mode {}, negate {}): check the thresholds, negate and mode, not the "
+                  "resolution or origin",
+                  cells.occupied, known, map.grid.width(), map.grid.height(), darkest,
+                  meta.occupied_thresh, meta.free_thresh, to_string(meta.mode),
+                  meta.negate ? 1 : 0),
+      (map.yaml_path.empty() ? map.image_path : map.yaml_path).string(), 0, field);
 }
 
 /// Refuses maps the main job could not localize in within the memory limit.
@@ -115,11 +161,13 @@ LoadedDataset load_dataset(const std::filesystem::path& path, const PlanRasterOp
     d.dxf_report = std::move(dxf.report);
   } else {
     LoadedMap plan = read_map(m.floorplan, m.floorplan_resolution, m.floorplan_origin, "floorplan");
+    require_walls(plan, "floorplan");
     d.warnings.insert(d.warnings.end(), plan.warnings.begin(), plan.warnings.end());
     d.plan_grid = std::move(plan.grid);
     d.plan_wall_samples = occupied_cell_centres(d.plan_grid);
   }
   LoadedMap grid = read_map(m.gridmap, m.gridmap_resolution, m.gridmap_origin, "gridmap");
+  require_walls(grid, "gridmap");
   d.warnings.insert(d.warnings.end(), grid.warnings.begin(), grid.warnings.end());
   d.gridmap = std::move(grid.grid);
   crop_large_map(d.gridmap, "gridmap " + m.gridmap.string(), limits, d.warnings);

@@ -66,5 +66,34 @@ TEST(DatasetLoader, AGridmapWithoutFreeSpaceIsRefusedNamingIt) {
                            {"gridmap.yaml", "'gridmap'", "no free cell"});
 }
 
+TEST(DatasetLoader, AGridmapWhoseThresholdsFindNoWallIsRefusedWithTheValuesAndThresholds) {
+  test::TempDir dir;
+  std::filesystem::copy(office_dataset(), dir.path(), std::filesystem::copy_options::recursive);
+  // A SLAM map whose walls are grey 100 (occupancy 0.608), saved with occupied_thresh 0.65: the
+  // rule finds no wall at all.
+  const io::LoadedMap map = io::read_map_yaml(dir / "gridmap.yaml");
+  const GridGeometry& g = map.grid.geometry();
+  std::vector<std::uint8_t> pixels(g.size());
+  for (int iy = 0; iy < g.height; ++iy) {
+    for (int ix = 0; ix < g.width; ++ix) {
+      const CellState state = map.grid.state(ix, iy);
+      pixels[static_cast<std::size_t>(g.image_row(iy)) * g.width + ix] =
+          state == CellState::occupied ? 100
+          : state == CellState::free   ? 254
+                                       : 205;
+    }
+  }
+  io::write_pgm(dir / "gridmap.pgm", g.width, g.height, pixels);
+  test::expect_input_error(
+      [&] { io::load_dataset(dir.path()); },
+      {"gridmap.yaml", "'gridmap'", "finds 0 occupied cells", "darkest pixel has occupancy 0.608",
+       "occupied_thresh 0.65", "not the resolution or origin"});
+  // With the threshold below the walls' grey, the same map loads.
+  std::string yaml = test::read_file(dir / "gridmap.yaml");
+  yaml.replace(yaml.find("occupied_thresh: 0.65"), 21, "occupied_thresh: 0.55");
+  test::write_file(dir / "gridmap.yaml", yaml);
+  EXPECT_NO_THROW(io::load_dataset(dir.path()));
+}
+
 }  // namespace
 }  // namespace floorgrid
