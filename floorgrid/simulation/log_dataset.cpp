@@ -202,6 +202,17 @@ std::vector<Eigen::Vector2d> drawn_corners(const std::vector<std::vector<cv::Poi
   return corners;
 }
 
+// A number that tells logs apart: their scan count and first pose.
+std::uint64_t log_fingerprint(const RobotLog& log) {
+  const Pose2& p = log.scans.front().robot_pose;
+  std::uint64_t h = 1469598103934665603ull;
+  for (const double v : {double(log.scans.size()), p.x, p.y, p.theta}) {
+    h ^= static_cast<std::uint64_t>(std::llround(v * 1000.0));
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+
 void trace_statistics(const RobotLog& log, LogDatasetStatistics& s) {
   s.scans = log.scans.size();
   std::vector<double> steps, turns;
@@ -257,7 +268,9 @@ LogDataset simulate_from_log(const RobotLog& log, const LogDatasetOptions& optio
   d.options = options;
   LogDatasetOptions& o = d.options;
   LogDatasetStatistics& s = d.statistics;
-  Random random(o.seed);
+  // The choices depend on the log too, so one seed gives each building its own scale, bend and
+  // turn (a matrix over many logs then covers the ranges).
+  Random random(o.seed ^ log_fingerprint(log));
   Random choices(random.fork()), pairs_random(random.fork());
   if (!o.plan_scale)
     o.plan_scale = std::exp(choices.uniform(std::log(0.5), std::log(2.0)));
