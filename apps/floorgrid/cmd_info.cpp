@@ -64,12 +64,36 @@ void print_map(const json& j, const std::string& indent) {
   print_warnings(j, indent);
 }
 
+/// Where a DXF's units came from, in words.
+std::string source_text(const json& j) {
+  const std::string source = j["units_source"].get<std::string>();
+  if (source == "header")
+    return "from $INSUNITS, checked against the drawing";
+  if (source == "header_overruled")
+    return "from the drawing, overruling $INSUNITS";
+  if (source == "guessed")
+    return "guessed from the drawing (no usable $INSUNITS)";
+  return "requested explicitly";
+}
+
 void print_dxf(const json& j, const std::string& indent) {
   fmt::print("{}version     {}\n", indent, j["version"].get<std::string>());
   fmt::print("{}units       {} ({} m per unit; header says {})\n", indent,
              j["units_used"].get<std::string>(), j["metres_per_unit"].get<double>(),
              j["header_units"].get<std::string>());
+  fmt::print("{}            {}, confidence {}\n", indent, source_text(j),
+             j["units_confidence"].get<std::string>());
   fmt::print("{}            {}\n", indent, j["units_reason"].get<std::string>());
+  for (const auto& line : j["units_evidence"]) {
+    fmt::print("{}  evidence  {}\n", indent, line.get<std::string>());
+  }
+  std::string candidates;
+  for (const auto& c : j["unit_candidates"]) {
+    candidates += fmt::format("{}{} {:.3g}% (score {:.1f})", candidates.empty() ? "" : ", ",
+                              c["unit"].get<std::string>(), 100.0 * c["probability"].get<double>(),
+                              c["score"].get<double>());
+  }
+  fmt::print("{}candidates  {}\n", indent, candidates);
   fmt::print("{}extent      {}\n", indent, bounds_text(j["extent_m"]));
   if (!j["header_extent_m"].is_null()) {
     fmt::print("{}header ext. {} ($EXTMIN/$EXTMAX, annotation included)\n", indent,

@@ -82,6 +82,9 @@ json describe_dxf(const std::filesystem::path& path, const DxfReadOptions& optio
             {"units_used", r.units_used},
             {"metres_per_unit", r.metres_per_unit},
             {"units_reason", r.units_reason},
+            {"units_source", r.units_source},
+            {"units_confidence", r.units_confidence},
+            {"units_evidence", r.units_evidence},
             {"extent_m", box_json(dxf.plan.bounds())},
             {"header_extent_m", box_json(r.header_extent_m)},
             {"segments", dxf.plan.segments().size()},
@@ -93,6 +96,14 @@ json describe_dxf(const std::filesystem::path& path, const DxfReadOptions& optio
             {"unsupported_skipped", r.unsupported_skipped},
             {"excluded_by_layer_filter", r.excluded_by_layer_filter},
             {"inserts_expanded", r.inserts_expanded}};
+  json candidates = json::array();
+  for (const PlanUnitCandidate& c : r.unit_candidates) {
+    candidates.push_back({{"unit", unit_name(c.unit)},
+                          {"metres_per_unit", metres_per_unit(c.unit)},
+                          {"score", c.score},
+                          {"probability", c.probability}});
+  }
+  j["unit_candidates"] = candidates;
   j["warnings"] = r.warnings;
   return j;
 }

@@ -8,6 +8,7 @@
 
 #include "floorgrid/core/error.hpp"
 #include "floorgrid/io/dxf_curves.hpp"
+#include "floorgrid/io/dxf_dimensions.hpp"
 
 namespace floorgrid::io {
 
@@ -229,6 +230,11 @@ class Expander {
     const std::string layer = parent_layer != nullptr && own == "0" ? *parent_layer : own;
     if (kAnnotation.count(e.type) != 0) {
       ++report_.annotation_skipped[e.type];
+      if (e.type == "DIMENSION") {
+        if (auto stated = dimension_stated_length(e, doc_, T)) {
+          geometry_.stated_lengths.push_back(std::move(*stated));
+        }
+      }
       return;
     }
     if (e.type == "INSERT") {

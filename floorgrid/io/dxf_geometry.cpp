@@ -92,14 +92,52 @@ Eigen::AlignedBox2d drawing_extent(const DrawingGeometry& geometry) {
   return box;
 }
 
-std::vector<PlanArc> drawing_arcs(const DrawingGeometry& geometry) {
-  std::vector<PlanArc> arcs;
+PlanUnitEvidence drawing_unit_evidence(const DrawingGeometry& geometry) {
+  std::vector<PlanLine> lines;
+  std::vector<PlanCircle> arcs;
+  std::vector<Eigen::Vector2d> points;
   for (const DrawingItem& item : geometry.items) {
-    if (const auto* a = std::get_if<CircularArc2>(&item.curve)) {
-      arcs.push_back({a->radius, a->end - a->start});
-    }
+    std::visit(Overloaded{
+                   [&](const DrawingLine& l) {
+                     lines.push_back({l.a, l.b});
+                     points.push_back(l.a);
+                     points.push_back(l.b);
+                   },
+                   [&](const CircularArc2& a) {
+                     arcs.push_back({a.center, a.radius, a.start, a.end});
+                     points.push_back(a.center + a.radius * Eigen::Vector2d(std::cos(a.start),
+                                                                            std::sin(a.start)));
+                     points.push_back(a.center +
+                                      a.radius * Eigen::Vector2d(std::cos(a.end), std::sin(a.end)));
+                   },
+                   [&](const DrawingEllipse& e) {
+                     points.push_back(e.center + e.u * std::cos(e.t0) + e.v * std::sin(e.t0));
+                     points.push_back(e.center + e.u * std::cos(e.t1) + e.v * std::sin(e.t1));
+                   },
+                   [&](const BSpline2& s) {
+                     points.insert(points.end(), s.control.begin(), s.control.end());
+                   },
+                   [&](const DrawingPolyline& p) {
+                     for (std::size_t i = 1; i < p.points.size(); ++i) {
+                       lines.push_back({p.points[i - 1], p.points[i]});
+                     }
+                     points.insert(points.end(), p.points.begin(), p.points.end());
+                   },
+               },
+               item.curve);
   }
-  return arcs;
+  PlanUnitEvidence evidence;
+  evidence.extent = drawing_extent(geometry);
+  // The core extent only matters when strays stretch the drawing: keep it empty otherwise, so
+  // that messages speak of the plain extent.
+  const Eigen::AlignedBox2d core = core_extent(std::move(points));
+  if (!core.isEmpty() && core.sizes().maxCoeff() < 0.5 * evidence.extent.sizes().maxCoeff()) {
+    evidence.core_extent = core;
+  }
+  evidence.arcs = find_door_leaves(arcs, lines);
+  evidence.walls = measure_wall_bands(lines);
+  evidence.dimensions = geometry.stated_lengths;
+  return evidence;
 }
 
 VectorFloorplan drawing_to_floorplan(const DrawingGeometry& geometry, double metres_per_unit,

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "floorgrid/io/dxf_curves.hpp"
-#include "floorgrid/maps/plan_units.hpp"
+#include "floorgrid/maps/plan_unit_choice.hpp"
 #include "floorgrid/maps/vector_floorplan.hpp"
 
 namespace floorgrid::io {
@@ -45,6 +45,8 @@ struct DrawingItem {
 struct DrawingGeometry {
   std::vector<std::string> layers;  ///< names, by DrawingItem::layer
   std::vector<DrawingItem> items;   ///< every curve, kept or not
+  /// Dimensions (on any layer) whose text states a length with its unit: unit evidence.
+  std::vector<StatedLength> stated_lengths;
 
   /// Index of `layer`, added when new.
   int layer_index(const std::string& layer);
@@ -63,8 +65,10 @@ bool is_physical(const decltype(DrawingItem::curve)& curve);
 /// Bounds of every item (kept or not), drawing units. Ellipses are bounded by sampling and
 /// splines by their control points: the bounds tell units, not geometry.
 Eigen::AlignedBox2d drawing_extent(const DrawingGeometry& geometry);
-/// Every circular arc (kept or not), as unit evidence.
-std::vector<PlanArc> drawing_arcs(const DrawingGeometry& geometry);
+/// What every item (kept or not) tells about the units: the extent with and without far-off
+/// strays, every circular arc with its door leaf if it has one, the wall bands of the straight
+/// pieces, and the stated lengths. The header's part is left for the caller.
+PlanUnitEvidence drawing_unit_evidence(const DrawingGeometry& geometry);
 /// The kept items as a floorplan in metres: coordinates times `metres_per_unit`; ellipses and
 /// splines become segments with chord error at most `tolerance_m` metres.
 VectorFloorplan drawing_to_floorplan(const DrawingGeometry& geometry, double metres_per_unit,

@@ -9,7 +9,7 @@
 #include "floorgrid/io/dxf_geometry.hpp"
 #include "floorgrid/io/dxf_tokens.hpp"
 #include "floorgrid/maps/layer_filter.hpp"
-#include "floorgrid/maps/plan_units.hpp"
+#include "floorgrid/maps/plan_unit_choice.hpp"
 
 namespace floorgrid::io {
 
@@ -26,15 +26,13 @@ std::optional<PlanUnit> validate(const DxfReadOptions& options) {
   return parse_units_option(options.units, "units");
 }
 
-/// What `$INSUNITS` says, as evidence for choose_plan_unit.
-PlanUnitEvidence header_evidence(const DxfDocument& doc) {
-  PlanUnitEvidence evidence;
+/// Adds what `$INSUNITS` says to the evidence for choose_plan_unit.
+void add_header_units(const DxfDocument& doc, PlanUnitEvidence& evidence) {
   if (const DxfGroup* g = doc.header_value("$INSUNITS", 70)) {
     const long code = group_integer(*g);
     evidence.header_name = insunits_name(static_cast<int>(code));
     evidence.header_unit = plan_unit_from_insunits(static_cast<int>(code));
   }
-  return evidence;
 }
 
 /// `$EXTMIN`/`$EXTMAX` scaled to metres, or an empty box when absent or not a box.
@@ -88,14 +86,17 @@ DxfFloorplan read_document(const std::string& text, const DxfReadOptions& option
 
   // The unit is a property of the whole drawing: layers the filters drop still tell it (a filter
   // keeping only walls must not lose the door swings that reveal inches).
-  PlanUnitEvidence evidence = header_evidence(doc);
-  evidence.extent = drawing_extent(geometry);
-  evidence.arcs = drawing_arcs(geometry);
-  const PlanUnitChoice choice = choose_plan_unit(evidence, requested);
+  PlanUnitEvidence evidence = drawing_unit_evidence(geometry);
+  add_header_units(doc, evidence);
+  PlanUnitChoice choice = choose_plan_unit(evidence, requested);
   report.header_units = evidence.header_name;
   report.units_used = unit_name(choice.unit);
   report.metres_per_unit = choice.metres_per_unit;
   report.units_reason = choice.reason;
+  report.units_source = to_string(choice.source);
+  report.units_confidence = to_string(choice.confidence);
+  report.units_evidence = std::move(choice.evidence);
+  report.unit_candidates = std::move(choice.candidates);
   report.warnings.insert(report.warnings.end(), choice.warnings.begin(), choice.warnings.end());
 
   out.plan = drawing_to_floorplan(geometry, choice.metres_per_unit, options.curve_tolerance);

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "floorgrid/maps/plan_unit_choice.hpp"
 #include "floorgrid/maps/vector_floorplan.hpp"
 
 namespace floorgrid::io {
@@ -24,11 +25,21 @@ struct DxfReadOptions {
 
 /// What a DXF file held and how it was read.
 struct DxfReport {
-  std::string version;                ///< `$ACADVER` (AC1009 = R12, AC1015 = R2000, ...), or empty
-  std::string header_units;           ///< what `$INSUNITS` says ("mm", "in", ...), or "none"
-  std::string units_used;             ///< the unit applied: m, cm, mm, in or ft
-  double metres_per_unit = 1.0;       ///< of units_used
-  std::string units_reason;           ///< why units_used was chosen
+  std::string version;           ///< `$ACADVER` (AC1009 = R12, AC1015 = R2000, ...), or empty
+  std::string header_units;      ///< what `$INSUNITS` says ("mm", "in", ...), or "none"
+  std::string units_used;        ///< the unit applied: m, cm, mm, in or ft
+  double metres_per_unit = 1.0;  ///< of units_used
+  std::string units_reason;      ///< why units_used was chosen
+  /// Where units_used came from: requested, header (`$INSUNITS` kept), header_overruled (the
+  /// drawing contradicted it strongly) or guessed (no usable header).
+  std::string units_source;
+  std::string units_confidence;  ///< how sure units_used is: high, medium or low
+  /// What the drawing shows about its units, one line per kind of evidence (extent, door swings,
+  /// dimension texts, walls), each with what it means in the units worth comparing.
+  std::vector<std::string> units_evidence;
+  /// Units the drawing may be in, with their score and probability, most probable first (those
+  /// of at least 1%, and units_used): what a robot's run may decide between.
+  std::vector<PlanUnitCandidate> unit_candidates;
   std::vector<std::string> warnings;  ///< everything odd that did not stop reading
   /// Geometry entities kept, by DXF type, counted once per block reference that placed them.
   std::map<std::string, std::size_t> entities_by_type;

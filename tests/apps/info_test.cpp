@@ -84,14 +84,32 @@ TEST(InfoCommand, DxfUnitsExtentAndBinaryRefusal) {
   EXPECT_NEAR(house["header_extent_m"]["size"][1].get<double>(), 23.8, 0.5);
   EXPECT_GT(house["entities_by_type"]["LINE"].get<int>(), 100);
   EXPECT_GT(house["annotation_skipped"]["TEXT"].get<int>(), 0);
+  // Which units, from what evidence, how sure, and the candidates.
+  EXPECT_EQ(house["units_source"], "header_overruled");
+  EXPECT_EQ(house["units_confidence"], "high");
+  ASSERT_GE(house["units_evidence"].size(), 4u);
+  EXPECT_NE(house["units_evidence"].dump().find("63 dimension texts"), std::string::npos);
+  ASSERT_FALSE(house["unit_candidates"].empty());
+  EXPECT_EQ(house["unit_candidates"][0]["unit"], "in");
+  EXPECT_EQ(house["unit_candidates"][0]["metres_per_unit"], 0.0254);
+  EXPECT_GT(house["unit_candidates"][0]["probability"].get<double>(), 0.999);
+  const auto text = run_floorgrid("info " + quoted(data_path("dxf/house_floorplan_r2004.dxf")));
+  EXPECT_NE(text.out.find("from the drawing, overruling $INSUNITS, confidence high"),
+            std::string::npos)
+      << text.out;
+  EXPECT_NE(text.out.find("evidence  10 door swings"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("candidates  in 100%"), std::string::npos) << text.out;
 
   const json site = info_json(data_path("dxf/house_site_r2000.dxf"));
   EXPECT_EQ(site["units_used"], "m");
+  EXPECT_EQ(site["units_source"], "header");
   EXPECT_NEAR(site["extent_m"]["size"][0].get<double>(), 43.0, 1.0);
   EXPECT_NEAR(site["extent_m"]["size"][1].get<double>(), 33.0, 1.0);
 
   const json r12 = info_json(data_path("dxf/sample_r12_ascii.dxf"));
   EXPECT_GT(r12["entities_by_type"]["POLYLINE"].get<int>(), 0);
+  EXPECT_EQ(r12["units_source"], "guessed");
+  EXPECT_NE(r12["units_confidence"], "high");
 
   const auto binary = run_floorgrid("info " + quoted(data_path("dxf/sample_r2018_binary.dxf")));
   EXPECT_EQ(binary.status, 2);

@@ -51,6 +51,17 @@ TEST(DxfRealFiles, HouseFloorplanHeaderSaysMillimetresButReadsAsInches) {
   EXPECT_EQ(read.report.units_used, "in");
   EXPECT_DOUBLE_EQ(read.report.metres_per_unit, 0.0254);
   EXPECT_TRUE(has_warning(read.report, "mm", "reads as in")) << read.report.units_reason;
+  // Its 63 feet-inch dimension texts, 10 door swings and 4-inch walls all say inches.
+  EXPECT_EQ(read.report.units_source, "header_overruled");
+  EXPECT_EQ(read.report.units_confidence, "high");
+  EXPECT_NE(read.report.units_reason.find("63 of 63 dimension texts fit (3'-1\" for 37 units)"),
+            std::string::npos)
+      << read.report.units_reason;
+  EXPECT_NE(read.report.units_reason.find("10 door swings 0.61-0.914 m wide"), std::string::npos)
+      << read.report.units_reason;
+  ASSERT_FALSE(read.report.unit_candidates.empty());
+  EXPECT_EQ(read.report.unit_candidates.front().unit, PlanUnit::in);
+  EXPECT_GT(read.report.unit_candidates.front().probability, 0.999);
   // A house: its walls span 22.0 x 14.5 m (dimensions and notes reach 24.5 x 23.9 m, the
   // header's $EXTMIN/$EXTMAX, but they are not geometry).
   EXPECT_NEAR(read.report.extent_m.sizes().x(), 22.0, 0.1);
@@ -90,6 +101,8 @@ TEST(DxfRealFiles, HouseSiteIsMetresAbout43By33) {
   EXPECT_NEAR(read.report.extent_m.sizes().x(), 43.1, 0.05);
   EXPECT_NEAR(read.report.extent_m.sizes().y(), 32.6, 0.05);
   EXPECT_FALSE(has_warning(read.report, "INSUNITS", "reads as"));
+  EXPECT_EQ(read.report.units_source, "header");
+  EXPECT_EQ(read.report.units_confidence, "high");  // three door swings of 0.85 m, 0.25 m walls
   EXPECT_GT(read.report.inserts_expanded, 0u);
   if (ezdxf_available()) {
     expect_matches_ezdxf(path, read);  // with mirrored INSERTs
@@ -105,6 +118,13 @@ TEST(DxfRealFiles, SampleR12ReadsOldStylePolylinesAndInserts) {
   EXPECT_GT(read.report.entities_by_type.at("POLYLINE"), 0u);
   EXPECT_GT(read.report.inserts_expanded, 0u);
   EXPECT_FALSE(read.report.units_reason.empty());
+  // An AutoCAD test drawing, not a building: whatever the guess, it is said to be one. Its one
+  // dimension text (4'-0 1#4" for 48.36 units) and its spacing of parallel lines hint at inches.
+  EXPECT_EQ(read.report.units_source, "guessed");
+  EXPECT_EQ(read.report.units_used, "in");
+  EXPECT_NE(read.report.units_confidence, "high");
+  EXPECT_TRUE(has_warning(read.report, "no $INSUNITS", "guessed")) << read.report.units_reason;
+  EXPECT_GT(read.report.unit_candidates.size(), 1u);
   if (ezdxf_available()) {
     expect_matches_ezdxf(path, read);
   }
