@@ -52,8 +52,10 @@ void track_plan_and_refit_scale(const DualMaps& maps, const RobotLog& log,
                                 const DualLocalizerOptions& options, PlanLocation& location,
                                 DualLocalization& result, const DualProgressCallback& progress) {
   const ScaleRefitOptions& refit_options = options.scale_refit;
-  const bool refit_scale =
-      result.plan_scale_estimated && options.refine_poses && refit_options.enabled;
+  const bool refit_scale = result.plan_scale_estimated && options.refine_poses &&
+                           refit_options.enabled && !location.keep_scale;
+  if (location.keep_scale)
+    result.notes.push_back("the plan scale is kept as the maps' registration gave it");
   for (int pass = 1;; ++pass) {
     auto clock = std::chrono::steady_clock::now();
     track_plan(maps, log, options, location, result, progress);

@@ -17,6 +17,9 @@ struct PlanLocation {
   /// The scale and the registration came from registering the gridmap on the plan directly,
   /// clearly enough that the plan filter's scale search is not needed.
   bool from_maps = false;
+  /// And the scale is kept as the maps gave it, not refitted after tracking (a raster plan:
+  /// the refit is biased by its strokes' thickness, the registration is not).
+  bool keep_scale = false;
 };
 
 /// Step 2 of localize_dual: the plan is related to the run from the given start poses or,
