@@ -15,6 +15,7 @@
 #include "floorgrid/io/system_memory.hpp"
 #include "floorgrid/io/value_json.hpp"
 #include "floorgrid/mapping/mapping_factory.hpp"
+#include "floorgrid/mapping/model_selection.hpp"
 
 namespace floorgrid::app {
 
@@ -53,6 +54,7 @@ void add_fit_command(CLI::App& root) {
   struct Args {
     std::string pairs, out;
     int cv = 0;
+    std::string cv_kind = to_string(CrossValidationOptions{}.kind);
     double unit = 1.0;
     MappingOptions options;
     // Signed, so that a negative budget is refused rather than wrapped around.
@@ -71,6 +73,14 @@ void add_fit_command(CLI::App& root) {
   cmd->add_option("--out", args->out, "model file to write (JSON)")->required();
   cmd->add_option("--cv", args->cv, "also report the k-fold cross-validated error (0: no)")
       ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--cv-kind", args->cv_kind,
+                  "folds of whole spatial blocks (blocked: the error away from the pairs) or of "
+                  "pairs dealt at random (random); also how auto compares its candidates")
+      ->check(CLI::IsMember({"blocked", "random"}))
+      ->capture_default_str();
+  cmd->add_option("--cv-block", args->options.auto_select.cv.block_size,
+                  "metres, side of the blocks of blocked folds (0: chosen from the pairs)")
+      ->capture_default_str();
   cmd->add_option("--unit", args->unit,
                   "metres per unit of the pairs (the Halmstad pixel pairs: 0.05); the model "
                   "records it and `map` then reads and writes in those units")
@@ -99,6 +109,14 @@ void add_fit_command(CLI::App& root) {
                        "--budget");
     if (!(args->memory_limit_gb > 0.0 && args->memory_limit_gb < 1e6))
       throw InputError("must be a positive number of GiB", {}, 0, "--memory-limit");
+    CrossValidationOptions& cv = args->options.auto_select.cv;
+    cv.kind =
+        args->cv_kind == "random" ? CrossValidationKind::random : CrossValidationKind::blocked;
+    if (!(cv.block_size >= 0.0 && cv.block_size <= kMaxCoordinate)) {
+      throw InputError(fmt::format("must be 0 (chosen from the pairs) or a size in metres (got {})",
+                                   cv.block_size),
+                       {}, 0, "--cv-block");
+    }
     const double extrapolation = args->options.common.extrapolation_distance;
     if (!(extrapolation >= 0.0 && extrapolation <= kMaxCoordinate))
       throw InputError(fmt::format("must be a distance in [0, 1e7] metres (got {})", extrapolation),
@@ -127,11 +145,11 @@ void add_fit_command(CLI::App& root) {
     for (const auto& w : s.warnings)
       spdlog::warn("{}", w);
     if (args->cv >= 2) {
-      CrossValidationOptions cv;
-      cv.folds = args->cv;
+      CrossValidationOptions folds = cv;
+      folds.folds = args->cv;
       const CrossValidationResult r =
-          with_file(args->pairs, [&] { return cross_validate(args->options, pairs, cv); });
-      model->set_cv_error(r.mean_error_m);
+          with_file(args->pairs, [&] { return cross_validate(args->options, pairs, folds); });
+      model->set_cv_error(r.mean_error_m, r.method);
     }
     io::write_model(*model, args->out);
     const FitSummary& f = model->summary();
@@ -150,7 +168,12 @@ void add_fit_command(CLI::App& root) {
     if (f.details.size() > 0)
       fmt::print("details   {}\n", io::dump_json(f.details, -1));
     fmt::print("time      {:.3f} s\n", f.seconds);
-    if (f.cv_error_m) {
+    if (f.cv_error_m && f.cv) {
+      const std::string blocks =
+          f.cv->kind == "blocked" ? fmt::format(", {:.2f} m blocks", f.cv->block_size) : "";
+      fmt::print("cv error  {:.4f} m ({:.4g} units, {}-fold {}{})\n", *f.cv_error_m,
+                 *f.cv_error_m / args->unit, f.cv->folds, f.cv->kind, blocks);
+    } else if (f.cv_error_m) {
       fmt::print("cv error  {:.4f} m ({:.4g} units, {}-fold)\n", *f.cv_error_m,
                  *f.cv_error_m / args->unit,
                  args->cv >= 2 ? args->cv : args->options.auto_select.cv.folds);

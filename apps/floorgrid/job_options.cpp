@@ -1,6 +1,8 @@
 #include "apps/floorgrid/job_options.hpp"
 
 #include "floorgrid/core/error.hpp"
+#include "floorgrid/geometry/reference_pairs.hpp"
+#include "floorgrid/mapping/model_selection.hpp"
 
 namespace floorgrid::app {
 
@@ -14,6 +16,13 @@ void add_job_options(CLI::App* cmd, const std::shared_ptr<JobArgs>& args, bool w
   if (with_cv) {
     cmd->add_option("--cv", args->cv, "k of each model's k-fold cross-validation (0: none)")
         ->check(CLI::NonNegativeNumber);
+    cmd->add_option("--cv-kind", args->cv_kind,
+                    "folds of whole spatial blocks (blocked: the error away from the pairs, "
+                    "default) or of pairs dealt at random (random)")
+        ->check(CLI::IsMember({"blocked", "random"}));
+    cmd->add_option("--cv-block", args->cv_block,
+                    "metres, side of the blocks of blocked folds (default 0: chosen from the "
+                    "pairs)");
   }
 }
 
@@ -29,6 +38,16 @@ JobOptions job_options(const JobArgs& args) {
     if (*args.cv == 1)
       throw InputError("must be 0 or at least 2", {}, 0, "--cv");
     options.align.models.cv_folds = *args.cv;
+  }
+  CrossValidationOptions& cv = options.align.models.mapping.auto_select.cv;
+  if (args.cv_kind)
+    cv.kind =
+        *args.cv_kind == "random" ? CrossValidationKind::random : CrossValidationKind::blocked;
+  if (args.cv_block) {
+    if (!(*args.cv_block >= 0.0 && *args.cv_block <= kMaxCoordinate))
+      throw InputError("must be 0 (chosen from the pairs) or a size in metres", {}, 0,
+                       "--cv-block");
+    cv.block_size = *args.cv_block;
   }
   if (args.memory_gb) {
     if (!(*args.memory_gb > 0.0 && *args.memory_gb < 1e6))

@@ -97,6 +97,15 @@ void print_models(const Alignment& a) {
   fmt::print(
       "walls_m: median distance of the plan's walls, mapped, to the gridmap's walls "
       "(within 2 m of a pair)\n");
+  for (const ModelAlignment& m : a.models) {
+    if (const auto& cv = m.report.summary.cv; cv && m.report.failure.empty()) {
+      fmt::print(
+          "cv_m: mean held-out error of {}-fold {} cross-validation{}\n", cv->folds, cv->kind,
+          cv->kind == "blocked" ? fmt::format(" (whole {:.2f} m blocks held out)", cv->block_size)
+                                : std::string());
+      break;
+    }
+  }
   if (!a.chosen.empty())
     fmt::print("auto chose  {}\n", a.chosen);
 }

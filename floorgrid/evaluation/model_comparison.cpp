@@ -41,13 +41,15 @@ std::vector<ModelReport> compare_models(const ReferencePairs& pairs, const Evalu
       report.summary = model->fit(pairs);
       if (options.cv_folds >= 2 && name == "auto") {
         report.summary.cv_error_m = model->summary().cv_error_m;
+        report.summary.cv = model->summary().cv;
       } else if (options.cv_folds >= 2) {
-        CrossValidationOptions cv;
+        // The same kind, blocks and pair budget as auto's, so that auto can reuse the result.
+        CrossValidationOptions cv = mapping.auto_select.cv;
         cv.folds = options.cv_folds;
-        cv.max_pairs = mapping.auto_select.cv.max_pairs;
         const CrossValidationResult r = cross_validate(mapping, pairs, cv);
-        model->set_cv_error(r.mean_error_m);
+        model->set_cv_error(r.mean_error_m, r.method);
         report.summary.cv_error_m = r.mean_error_m;
+        report.summary.cv = r.method;
         cross_validated[name] = r;
       }
       report.model = std::move(model);

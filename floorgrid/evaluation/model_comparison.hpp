@@ -29,8 +29,10 @@ struct ModelComparisonOptions {
   /// The models fitted (SPEC: at least gt, gp, gpgt, ct, dt, tps, lc, auto).
   std::vector<std::string> models = {"lc", "gt",   "gt-rigid", "gt-affine", "ct",
                                      "gp", "gpgt", "dt",       "tps",       "auto"};
-  MappingOptions mapping;                   ///< options of every model (`model` is set per model)
-  int cv_folds = 5;                         ///< k-fold cross-validation of each model (0: none)
+  MappingOptions mapping;  ///< options of every model (`model` is set per model)
+  /// k-fold cross-validation of each model (0: none); its kind, blocks and pair budget are
+  /// mapping.auto_select.cv's, so that auto reuses the results when the folds agree.
+  int cv_folds = 5;
   int back_and_forth_rounds = 100;          ///< thesis 6.5
   std::size_t back_and_forth_points = 300;  ///< domain points followed
 };

@@ -37,6 +37,11 @@ json model_json(const ModelAlignment& m) {
   }
   j["fit_seconds"] = number(r.summary.seconds);
   j["cv_error_m"] = r.summary.cv_error_m ? number(*r.summary.cv_error_m) : json(nullptr);
+  // Which cross-validation cv_error_m is: blocked (away from the pairs) or random.
+  const std::optional<CrossValidationRecord>& cv = r.summary.cv;
+  j["cv_kind"] = cv ? json(cv->kind) : json(nullptr);
+  j["cv_folds"] = cv ? json(cv->folds) : json(nullptr);
+  j["cv_block_m"] = cv && cv->kind == "blocked" ? number(cv->block_size) : json(nullptr);
   j["rms_m"] = number(r.summary.rms_m);
   j["pairs_used"] = r.summary.pairs_used;
   if (r.summary.inliers)

@@ -55,6 +55,15 @@ void visit(OptionVisitor& v, CrossValidationOptions& o) {
           {.unit = "",
            .doc = "Pairs binned down to this before the folds (cost bound)",
            .choices = {}});
+  enum_field(v, "kind", o.kind,
+             {{"blocked", CrossValidationKind::blocked}, {"random", CrossValidationKind::random}},
+             "Folds of whole square blocks of the grid frame (the error away from the pairs), or "
+             "pairs dealt at random (near-copies stay in training)");
+  v.field("block_size", o.block_size,
+          {.unit = "m",
+           .doc = "Side of the blocks of blocked folds (0: a few metres, chosen from the "
+                  "pairs' extent and density)",
+           .choices = {}});
 }
 
 void visit(OptionVisitor& v, ThinPlateSplineLatticeOptions& o) {

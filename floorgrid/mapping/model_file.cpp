@@ -194,6 +194,21 @@ std::size_t summary_count(const Value& object, const std::string& key, const std
            : 0;
 }
 
+/// How the fit's error was cross-validated (absent from files of earlier builds).
+CrossValidationRecord cv_record(const Value& cv, const std::string& where) {
+  CrossValidationRecord record;
+  record.kind = text(member(cv, "kind", where, "fit.cv."), where, "fit.cv.kind");
+  if (record.kind != "blocked" && record.kind != "random") {
+    throw InputError("must be blocked or random (got " + record.kind + ")", where, 0,
+                     "fit.cv.kind");
+  }
+  record.folds = summary_count(cv, "folds", where, "fit.cv.");
+  if (const Value* size = optional_member(cv, "block_size_m"))
+    record.block_size = number(*size, where, "fit.cv.block_size_m", 0.0, kMaxCoordinate);
+  record.pairs = summary_count(cv, "pairs", where, "fit.cv.");
+  return record;
+}
+
 }  // namespace
 
 Value PointMapping::to_model_file() const {
@@ -224,6 +239,12 @@ Value PointMapping::to_model_file() const {
   if (s.inliers)
     fit["inliers"] = *s.inliers;
   fit["cv_error_m"] = s.cv_error_m ? Value(*s.cv_error_m) : Value(nullptr);
+  if (s.cv) {
+    fit["cv"] = {{"kind", s.cv->kind},
+                 {"folds", s.cv->folds},
+                 {"block_size_m", s.cv->block_size},
+                 {"pairs", s.cv->pairs}};
+  }
   file["fit"] = std::move(fit);
   file["options"] = {{"extrapolation_distance_m", common_.extrapolation_distance},
                      {"support_budget", common_.support_budget},
@@ -268,6 +289,8 @@ void PointMapping::from_model_file(const Value& file, const std::string& where) 
     summary_.inliers = summary_count(fit, "inliers", where, "fit.");
   if (optional_member(fit, "cv_error_m"))
     summary_.cv_error_m = summary_number(fit, "cv_error_m", where);
+  if (const Value* cv = optional_member(fit, "cv"))
+    summary_.cv = cv_record(*cv, where);
   if (const Value* details = optional_member(fit, "details"))
     summary_.details = *details;
   const Value& counts = member(file, "pairs", where);

@@ -132,7 +132,7 @@ constexpr std::array<ModelEntry, 10> kModels = {{
        return std::make_unique<ThinPlateSplineMapping>(o.common, o.tps);
      }},
     {"auto",
-     {.description = "the candidate with the lowest k-fold cross-validated error",
+     {.description = "the candidate with the lowest spatially blocked cross-validated error",
       .exact_similarity = true,
       .non_rigid = true,
       .fit_bytes = auto_bytes},

@@ -5,17 +5,42 @@
 #include <limits>
 
 #include "floorgrid/core/error.hpp"
-#include "floorgrid/core/random.hpp"
 #include "floorgrid/core/statistics.hpp"
+#include "floorgrid/core/validation.hpp"
 #include "floorgrid/mapping/mapping_factory.hpp"
 #include "floorgrid/mapping/model_file.hpp"
 
 namespace floorgrid {
 
+const char* to_string(CrossValidationKind kind) {
+  return kind == CrossValidationKind::blocked ? "blocked" : "random";
+}
+
+void validate(const CrossValidationOptions& cv, const std::string& prefix) {
+  require_option(cv.folds >= 2, prefix + "folds", cv.folds, ">= 2");
+  require_option(cv.block_size >= 0.0 && cv.block_size <= kMaxCoordinate, prefix + "block_size",
+                 cv.block_size, "0 (chosen from the pairs) or a size in metres");
+}
+
+namespace {
+
+/// The folds `cv` asks for over `pairs`, blocked in the grid frame (metres whatever the plan's
+/// units), with what was used.
+Folds deal_folds(const ReferencePairs& pairs, const CrossValidationOptions& cv,
+                 std::uint64_t seed) {
+  const auto folds = static_cast<std::size_t>(cv.folds);
+  if (cv.kind == CrossValidationKind::random)
+    return random_folds(static_cast<std::size_t>(pairs.size()), folds, seed);
+  const double size =
+      cv.block_size > 0.0 ? cv.block_size : choose_block_size(pairs.points_in_grid, folds);
+  return blocked_folds(pairs.points_in_grid, folds, size, seed);
+}
+
+}  // namespace
+
 CrossValidationResult cross_validate(const MappingOptions& options, const ReferencePairs& given,
                                      const CrossValidationOptions& cv) {
-  if (cv.folds < 2)
-    throw InputError("must be >= 2", {}, 0, "cv.folds");
+  validate(cv);
   validate_pairs(given);
   ReductionOptions budget;
   budget.budget = std::max<std::size_t>(cv.max_pairs, 3);
@@ -23,21 +48,15 @@ CrossValidationResult cross_validate(const MappingOptions& options, const Refere
   const auto n = static_cast<std::size_t>(pairs.size());
   CrossValidationResult result;
   result.pairs = n;
-  // Deal the pairs into folds: a seeded shuffle, then round robin.
-  std::vector<Eigen::Index> order(n);
-  for (std::size_t i = 0; i < n; ++i)
-    order[i] = static_cast<Eigen::Index>(i);
-  Random random(options.common.seed);
-  for (std::size_t i = n; i > 1; --i) {
-    std::swap(order[i - 1],
-              order[static_cast<std::size_t>(random.integer(0, static_cast<std::int64_t>(i) - 1))]);
-  }
-  const std::size_t folds = std::min<std::size_t>(static_cast<std::size_t>(cv.folds), n);
+  const Folds folds = deal_folds(pairs, cv, options.common.seed);
+  result.method = {
+      .kind = to_string(cv.kind), .folds = folds.count, .block_size = folds.block_size, .pairs = n};
   std::vector<double> errors;
-  for (std::size_t f = 0; f < folds; ++f) {
+  for (std::size_t f = 0; f < folds.count; ++f) {
     std::vector<Eigen::Index> train, test;
-    for (std::size_t i = 0; i < n; ++i)
-      (i % folds == f ? test : train).push_back(order[i]);
+    // In the folds' order: some fits (ct's clustering) depend on the order of their pairs.
+    for (const std::size_t i : folds.order)
+      (folds.fold_of[i] == f ? test : train).push_back(static_cast<Eigen::Index>(i));
     auto model = make_mapping(options);
     try {
       model->fit(select_pairs(pairs, train));
@@ -62,8 +81,7 @@ CrossValidationResult cross_validate(const MappingOptions& options, const Refere
   for (const double e : errors)
     sum += e;
   result.mean_error_m = sum / static_cast<double>(errors.size());
-  result.median_error_m =
-      errors.empty() ? std::numeric_limits<double>::infinity() : upper_median(errors);
+  result.median_error_m = upper_median(errors);
   return result;
 }
 
@@ -101,6 +119,7 @@ AutoMapping::AutoMapping(const MappingOptions& options)
   if (options_->auto_select.candidates.empty()) {
     throw InputError("needs at least one candidate", {}, 0, "auto.candidates");
   }
+  validate(options_->auto_select.cv, "auto_select.cv.");
 }
 
 AutoMapping::~AutoMapping() = default;
@@ -109,6 +128,7 @@ void AutoMapping::fit_model(const ReferencePairs& pairs, FitSummary& summary) {
   table_.clear();
   std::string best;
   double best_error = std::numeric_limits<double>::infinity();
+  CrossValidationRecord best_method;
   Value table = Value::object();
   for (const auto& name : options_->auto_select.candidates) {
     MappingOptions candidate = *options_;
@@ -125,6 +145,7 @@ void AutoMapping::fit_model(const ReferencePairs& pairs, FitSummary& summary) {
     if (cv.mean_error_m < best_error) {
       best_error = cv.mean_error_m;
       best = name;
+      best_method = cv.method;
     }
   }
   if (best.empty())
@@ -133,14 +154,17 @@ void AutoMapping::fit_model(const ReferencePairs& pairs, FitSummary& summary) {
   chosen.model = best;
   chosen_ = make_mapping(chosen);
   const FitSummary inner = chosen_->fit(pairs);
-  chosen_->set_cv_error(best_error);
+  chosen_->set_cv_error(best_error, best_method);
   summary.rms_m = inner.rms_m;
   summary.inliers = inner.inliers;
   summary.pairs_used = inner.pairs_used;
   summary.reduction = inner.reduction;
   summary.cv_error_m = best_error;
+  summary.cv = best_method;
   summary.details = {{"chosen", best},
                      {"folds", options_->auto_select.cv.folds},
+                     {"cv_kind", best_method.kind},
+                     {"cv_block_size_m", best_method.block_size},
                      {"cv_table", table},
                      {"chosen_details", inner.details}};
   summary.warnings.insert(summary.warnings.end(), inner.warnings.begin(), inner.warnings.end());

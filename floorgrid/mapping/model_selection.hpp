@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "floorgrid/mapping/cross_validation_folds.hpp"
 #include "floorgrid/mapping/model_registry.hpp"
 #include "floorgrid/mapping/point_mapping.hpp"
 
@@ -12,11 +13,27 @@ namespace floorgrid {
 
 struct MappingOptions;
 
+/// How the pairs are dealt into folds.
+enum class CrossValidationKind {
+  blocked,  ///< whole spatial blocks held out: the error away from the pairs
+  random,   ///< pairs dealt at random: near-copies of a held-out pair stay in training
+};
+
+/// The name of a kind as options and outputs spell it: "blocked" or "random".
+const char* to_string(CrossValidationKind kind);
+
 /// How models are cross-validated.
 struct CrossValidationOptions {
   int folds = 5;                 ///< k of k-fold, >= 2
   std::size_t max_pairs = 3000;  ///< pairs binned down to this before the folds (cost bound)
+  CrossValidationKind kind = CrossValidationKind::blocked;  ///< how pairs are dealt into folds
+  /// Side of the square blocks of blocked folds in the grid frame, metres (0: chosen from the
+  /// pairs' extent and density, at most kLargestAutoBlock).
+  double block_size = 0.0;
 };
+
+/// Checks `cv`; throws InputError naming `<prefix>folds` or `<prefix>block_size`.
+void validate(const CrossValidationOptions& cv, const std::string& prefix = "cv.");
 
 /// The outcome of a k-fold cross-validation.
 struct CrossValidationResult {
@@ -25,12 +42,14 @@ struct CrossValidationResult {
   std::vector<double> fold_errors;  ///< mean error per fold, metres
   std::size_t pairs = 0;            ///< pairs cross-validated (after binning)
   std::size_t failed_folds = 0;     ///< folds whose training set the model refused
+  CrossValidationRecord method;     ///< kind, folds and block size used
 };
 
 /// k-fold cross-validation of the model `options` names: pairs are merged, binned to
-/// max_pairs, dealt into k folds at random (seeded by options.common.seed); each fold is
-/// predicted by the model fitted on the others. A fold the model cannot be fitted on (too few
-/// pairs) counts as failed; when every fold fails the error is infinite.
+/// max_pairs, and dealt into k folds (seeded by options.common.seed): by default whole square
+/// blocks of the grid frame per fold (blocked_folds), or at random; each fold is predicted by
+/// the model fitted on the others. A fold the model cannot be fitted on (too few pairs) counts
+/// as failed; when every fold fails the error is infinite.
 CrossValidationResult cross_validate(const MappingOptions& options, const ReferencePairs& pairs,
                                      const CrossValidationOptions& cv = {});
 
@@ -47,8 +66,9 @@ struct AutoOptions {
   CrossValidationOptions cv;  ///< how they are compared
 };
 
-/// `auto`: the candidate with the lowest k-fold cross-validated mean error, refitted on all
-/// pairs; the table of every candidate's error is kept in the fit's details and the model file.
+/// `auto`: the candidate with the lowest cross-validated mean error (spatially blocked folds
+/// by default, see cross_validate), refitted on all pairs; the table of every candidate's error
+/// is kept in the fit's details and the model file, with how it was cross-validated.
 class AutoMapping : public PointMapping {
  public:
   /// An auto model choosing among `options.auto_select.candidates`, each built from `options`.

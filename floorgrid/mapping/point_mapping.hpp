@@ -5,6 +5,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "floorgrid/core/value.hpp"
@@ -57,6 +58,14 @@ struct MappingCommonOptions {
 /// Checks `options`; throws InputError naming `mapping.<field>` when one is out of range.
 void validate(const MappingCommonOptions& options);
 
+/// How a cross-validated error was measured (recorded with it in the model file).
+struct CrossValidationRecord {
+  std::string kind;         ///< "blocked" (whole spatial blocks held out) or "random"
+  std::size_t folds = 0;    ///< folds used
+  double block_size = 0.0;  ///< metres, side of the blocks (0 for random folds)
+  std::size_t pairs = 0;    ///< pairs cross-validated (after binning)
+};
+
 /// What a fit did (printed by `fit`, stored in the model file).
 struct FitSummary {
   std::string model;                   ///< model name
@@ -71,6 +80,8 @@ struct FitSummary {
   std::optional<double> cv_error_m;   ///< k-fold cross-validated mean error, metres
   std::vector<std::string> warnings;  ///< duplicates merged, weak conditioning, ...
   Value details = Value::object();    ///< model-specific figures
+  /// How cv_error_m was measured (none in files of earlier builds, which dealt pairs at random).
+  std::optional<CrossValidationRecord> cv;
 };
 
 /// A mapping from the plan frame to the grid frame learnt from reference pairs (SPEC "Mapping
@@ -105,8 +116,11 @@ class PointMapping {
   bool fitted() const { return fitted_; }
   /// The last fit's summary.
   const FitSummary& summary() const { return summary_; }
-  /// Sets the cross-validated error reported with the model.
-  void set_cv_error(double error_m) { summary_.cv_error_m = error_m; }
+  /// Sets the cross-validated error reported with the model, and how it was measured.
+  void set_cv_error(double error_m, CrossValidationRecord how) {
+    summary_.cv_error_m = error_m;
+    summary_.cv = std::move(how);
+  }
 
   /// A plan point (metres) in the grid frame.
   virtual Eigen::Vector2d forward(const Eigen::Vector2d& point_in_plan) const = 0;

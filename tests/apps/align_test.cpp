@@ -63,6 +63,10 @@ TEST(AlignCommand, OfficeGivesAccuratePairsAndModelsAndEveryContractKey) {
     }
     for (const char* key : {"min_m", "mean_m", "max_m"})
       EXPECT_TRUE(j["back_and_forth"][key].is_number()) << model << ".back_and_forth." << key;
+    // Which cross-validation cv_error_m is: spatially blocked by default.
+    EXPECT_EQ(j["cv_kind"], "blocked") << model;
+    EXPECT_EQ(j["cv_folds"], 5) << model;
+    EXPECT_GT(j["cv_block_m"].get<double>(), 0.0) << model;
     EXPECT_TRUE(fs::exists(dir / "out" / ("model-" + std::string(model) + ".json"))) << model;
     EXPECT_TRUE(fs::exists(dir / "out" / "overlays" / ("overlay-" + std::string(model) + ".png")));
   }

@@ -55,6 +55,10 @@ TEST(FitAndMapCommands, FitThenMapPointsPosesAndCsv) {
   EXPECT_EQ(model["frames"]["from"], "plan");
   EXPECT_EQ(model["parameters"]["T_grid_plan"].size(), 3u);
   EXPECT_TRUE(model["fit"]["cv_error_m"].is_number());
+  EXPECT_EQ(model["fit"]["cv"]["kind"], "blocked");
+  EXPECT_EQ(model["fit"]["cv"]["folds"], 5);
+  EXPECT_GT(model["fit"]["cv"]["block_size_m"].get<double>(), 0.0);
+  EXPECT_NE(fit.out.find("-fold blocked"), std::string::npos) << fit.out;
   // The threshold adapted to the pairs' noise, unless one is given (auto: the same as none).
   EXPECT_EQ(model["parameters"]["ransac"]["inlier_threshold_source"], "adaptive");
   for (const auto& [option, source] : {std::pair<std::string, std::string>{"0.3", "given"},

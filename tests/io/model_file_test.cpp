@@ -189,3 +189,33 @@ TEST(ModelFile, ASummaryWithoutFiguresStillLoads) {
 
 }  // namespace
 }  // namespace floorgrid
+
+namespace floorgrid {
+namespace {
+
+TEST(ModelFile, RecordsWhichCrossValidationMeasuredTheError) {
+  // auto records the cross-validation it chose by (blocked by default) with its error.
+  Value chooser = fitted_file("auto");
+  EXPECT_EQ(chooser["fit"]["cv"]["kind"].as_string(), "blocked");
+  EXPECT_GT(chooser["fit"]["cv"]["block_size_m"].as_number(), 0.0);
+  EXPECT_TRUE(chooser["fit"]["cv_error_m"].is_number());
+  // The record reads back as written.
+  test::TempDir dir;
+  test::write_file(dir / "model.json", io::dump_json(chooser));
+  const auto loaded = io::read_model(dir / "model.json");
+  ASSERT_TRUE(loaded->summary().cv.has_value());
+  EXPECT_EQ(loaded->summary().cv->kind, "blocked");
+  EXPECT_EQ(loaded->summary().cv->folds, 5u);
+  EXPECT_EQ(loaded->to_model_file()["fit"]["cv"], chooser["fit"]["cv"]);
+  // A file of an earlier build has no record: it loads without one.
+  EXPECT_FALSE(io::read_model(kFixtures / "gt.json")->summary().cv.has_value());
+  Value bad = chooser;
+  bad["fit"]["cv"]["kind"] = "spatial";
+  expect_refused(bad, {"'fit.cv.kind'", "spatial"});
+  bad = chooser;
+  bad["fit"]["cv"]["block_size_m"] = -1.0;
+  expect_refused(bad, {"'fit.cv.block_size_m'"});
+}
+
+}  // namespace
+}  // namespace floorgrid

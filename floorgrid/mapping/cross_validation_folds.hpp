@@ -1,0 +1,46 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace floorgrid {
+
+/// Pairs dealt into the folds of a cross-validation.
+struct Folds {
+  std::vector<std::size_t> fold_of;   ///< per pair, its fold in [0, count)
+  std::size_t count = 0;              ///< folds (fewer than asked when there are fewer blocks)
+  double block_size = 0.0;            ///< metres, side of the square blocks (0: random folds)
+  std::vector<std::size_t> block_of;  ///< per pair, its block (blocked folds; empty otherwise)
+  std::size_t blocks = 0;             ///< non-empty blocks (blocked folds)
+  /// Every pair once, in the order training and test sets list them (random folds: the
+  /// shuffled order, as k-fold always dealt them; blocked folds: the pairs' own order).
+  std::vector<std::size_t> order;
+};
+
+/// Random folds, the classic k-fold: the pairs shuffled by `seed`, then dealt round robin into
+/// min(folds, n) folds. Dense laser pairs have near-copies in every fold, so this measures
+/// little more than the noise an interpolator reproduces.
+Folds random_folds(std::size_t n, std::size_t folds, std::uint64_t seed);
+
+/// Spatially blocked folds: `points` (metres) binned into square blocks of `block_size` metres
+/// aligned on the points' lower-left bound; the blocks, in an order shuffled by `seed`, each go
+/// whole to the fold holding the fewest points so far, into min(folds, blocks) folds. A held-out
+/// pair's block is never in training, so what is measured is the error away from the pairs.
+Folds blocked_folds(const Eigen::Matrix2Xd& points, std::size_t folds, double block_size,
+                    std::uint64_t seed);
+
+/// The block side blocked_folds uses when none is given: kLargestAutoBlock metres, shrunk (by
+/// 0.8 each step) until the points fill at least kAutoBlocksPerFold blocks per fold, but never
+/// below twice the median distance between neighbouring points (density), so a block always
+/// holds a point's near-copies.
+double choose_block_size(const Eigen::Matrix2Xd& points, std::size_t folds);
+
+/// Largest block side choose_block_size returns, metres: a few metres, the scale of a room
+/// or a stretch of corridor, beyond the reach of a scan's near-copies.
+inline constexpr double kLargestAutoBlock = 4.0;
+/// Non-empty blocks per fold choose_block_size asks for at least.
+inline constexpr std::size_t kAutoBlocksPerFold = 4;
+
+}  // namespace floorgrid

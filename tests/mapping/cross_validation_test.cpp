@@ -1,0 +1,226 @@
+// Spatially blocked cross-validation: the partition (whole blocks per fold, deterministic for a
+// seed) and what it measures, on a case whose truth is known: dense near-copies of noisy pairs,
+// where random k-fold credits an interpolator with the noise it copies and blocked folds do not.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <set>
+
+#include "floorgrid/core/random.hpp"
+#include "floorgrid/mapping/cross_validation_folds.hpp"
+#include "floorgrid/mapping/mapping_factory.hpp"
+#include "floorgrid/mapping/model_selection.hpp"
+#include "tests/mapping/mapping_test_data.hpp"
+#include "tests/support/expect_error.hpp"
+
+namespace floorgrid {
+namespace {
+
+/// The square of `size` metres, counted from `lower`, holding `p`.
+std::pair<long, long> cell_of(const Eigen::Vector2d& p, const Eigen::Vector2d& lower, double size) {
+  return {static_cast<long>(std::floor((p.x() - lower.x()) / size)),
+          static_cast<long>(std::floor((p.y() - lower.y()) / size))};
+}
+
+TEST(BlockedFolds, EveryFoldHoldsOutWholeSquareBlocks) {
+  const Eigen::Matrix2Xd points = test::random_points(3000, 5);
+  const double size = 4.0;
+  const Folds folds = blocked_folds(points, 5, size, 7);
+  ASSERT_EQ(folds.count, 5u);
+  ASSERT_EQ(folds.fold_of.size(), 3000u);
+  EXPECT_EQ(folds.block_size, size);
+  const Eigen::Vector2d lower = points.rowwise().minCoeff();
+  // A block is exactly the points of one square: same square, same block, and back.
+  std::map<std::pair<long, long>, std::size_t> block_of_cell;
+  std::map<std::size_t, std::size_t> fold_of_block;
+  for (Eigen::Index i = 0; i < points.cols(); ++i) {
+    const auto cell = cell_of(points.col(i), lower, size);
+    const std::size_t block = folds.block_of[static_cast<std::size_t>(i)];
+    const auto [at, inserted] = block_of_cell.emplace(cell, block);
+    EXPECT_EQ(at->second, block) << "one square split into blocks";
+    // Every point of a block is in the same fold: held out whole.
+    const auto [f, new_block] =
+        fold_of_block.emplace(block, folds.fold_of[static_cast<std::size_t>(i)]);
+    EXPECT_EQ(f->second, folds.fold_of[static_cast<std::size_t>(i)]) << "block split by folds";
+  }
+  EXPECT_EQ(block_of_cell.size(), folds.blocks);
+  std::set<std::size_t> blocks;
+  for (const auto& [cell, block] : block_of_cell)
+    blocks.insert(block);
+  EXPECT_EQ(blocks.size(), folds.blocks) << "two squares share a block";
+  // So no held-out point shares its square with a training point, and the folds are of similar
+  // size (within a block's worth: about 3000 / 50 points here).
+  std::vector<std::size_t> sizes(folds.count, 0);
+  for (const std::size_t f : folds.fold_of)
+    ++sizes[f];
+  for (const std::size_t s : sizes) {
+    EXPECT_GT(s, 500u);
+    EXPECT_LT(s, 700u);
+  }
+}
+
+TEST(BlockedFolds, TheSameSeedGivesTheSameFoldsWhateverThePairsOrder) {
+  const Eigen::Matrix2Xd points = test::random_points(2000, 9);
+  const Folds a = blocked_folds(points, 5, 3.0, 11);
+  EXPECT_EQ(blocked_folds(points, 5, 3.0, 11).fold_of, a.fold_of);
+  EXPECT_NE(blocked_folds(points, 5, 3.0, 12).fold_of, a.fold_of);
+  // Reversed, each point keeps its fold: blocks are numbered by place, not by arrival.
+  const Eigen::Matrix2Xd reversed = points.rowwise().reverse();
+  const Folds b = blocked_folds(reversed, 5, 3.0, 11);
+  for (std::size_t i = 0; i < a.fold_of.size(); ++i)
+    EXPECT_EQ(b.fold_of[a.fold_of.size() - 1 - i], a.fold_of[i]);
+}
+
+TEST(BlockedFolds, FewerBlocksThanFoldsGiveOneFoldPerBlock) {
+  Eigen::Matrix2Xd points(2, 4);
+  points << 0.1, 0.2, 5.1, 5.2,  //
+      0.1, 0.3, 0.1, 0.2;
+  const Folds folds = blocked_folds(points, 5, 4.0, 1);
+  EXPECT_EQ(folds.blocks, 2u);
+  EXPECT_EQ(folds.count, 2u);
+  EXPECT_EQ(folds.fold_of[0], folds.fold_of[1]);
+  EXPECT_EQ(folds.fold_of[2], folds.fold_of[3]);
+  EXPECT_NE(folds.fold_of[0], folds.fold_of[2]);
+}
+
+TEST(RandomFolds, DealsThePairsEvenlyAndDeterministically) {
+  const Folds folds = random_folds(103, 5, 3);
+  ASSERT_EQ(folds.count, 5u);
+  EXPECT_EQ(folds.block_size, 0.0);
+  std::vector<std::size_t> sizes(5, 0);
+  for (const std::size_t f : folds.fold_of)
+    ++sizes[f];
+  for (const std::size_t s : sizes)
+    EXPECT_TRUE(s == 20u || s == 21u) << s;
+  EXPECT_EQ(random_folds(103, 5, 3).fold_of, folds.fold_of);
+  EXPECT_EQ(random_folds(3, 5, 3).count, 3u);
+  // Dealt round robin in a shuffled order, which lists every pair once.
+  std::vector<std::size_t> order = folds.order;
+  for (std::size_t i = 0; i < order.size(); ++i)
+    EXPECT_EQ(folds.fold_of[order[i]], i % 5);
+  std::sort(order.begin(), order.end());
+  for (std::size_t i = 0; i < order.size(); ++i)
+    EXPECT_EQ(order[i], i);
+}
+
+TEST(BlockSize, AFewMetresOnABuildingSmallerOnASmallSetNeverBelowThePairSpacing) {
+  // A 40 x 20 m building with dense pairs: the largest automatic block.
+  EXPECT_EQ(choose_block_size(test::random_points(3000, 1), 5), kLargestAutoBlock);
+  // A 6 x 6 m room: shrunk until there are 4 blocks per fold.
+  const Eigen::Matrix2Xd room = test::random_points(2000, 2).array() * 0.15;
+  const double size = choose_block_size(room, 5);
+  EXPECT_LT(size, kLargestAutoBlock);
+  EXPECT_GE(blocked_folds(room, 5, size, 1).blocks, kAutoBlocksPerFold * 5);
+  // Ten points 1 m apart on a line: not below twice their spacing.
+  Eigen::Matrix2Xd line(2, 10);
+  for (int i = 0; i < 10; ++i)
+    line.col(i) << i, 0.0;
+  EXPECT_GE(choose_block_size(line, 5), 2.0);
+}
+
+/// The analytic case: the truth is the identity; 400 places 1 m apart each carry an offset
+/// drawn from N(0, sigma^2 I) shared by 3 near-copies within 2 cm of one another, as laser pairs
+/// share a scan's pose error (1200 pairs: within every pair budget, so nothing is binned). A model
+/// not fitted on a pair's own place cannot know its offset: its expected error there is at least
+/// E|offset| = sigma sqrt(pi / 2) (the mean of a Rayleigh distribution; c -> E|b - c| is least at
+/// the centre c = 0 of a symmetric b).
+struct NearCopies {
+  ReferencePairs pairs;
+  double sigma = 0.05;
+};
+
+NearCopies near_copies() {
+  NearCopies c;
+  Random random(21);
+  const int places = 20, copies = 3;
+  c.pairs.points_in_plan.resize(2, places * places * copies);
+  c.pairs.points_in_grid.resize(2, places * places * copies);
+  Eigen::Index k = 0;
+  for (int i = 0; i < places; ++i) {
+    for (int j = 0; j < places; ++j) {
+      const Eigen::Vector2d place(i + random.uniform(0.2, 0.8), j + random.uniform(0.2, 0.8));
+      const Eigen::Vector2d offset(random.normal(c.sigma), random.normal(c.sigma));
+      for (int n = 0; n < copies; ++n, ++k) {
+        const Eigen::Vector2d p =
+            place + Eigen::Vector2d(random.uniform(-0.01, 0.01), random.uniform(-0.01, 0.01));
+        c.pairs.points_in_plan.col(k) = p;
+        c.pairs.points_in_grid.col(k) = p + offset;
+      }
+    }
+  }
+  return c;
+}
+
+TEST(BlockedCrossValidation, DoesNotCreditAnInterpolatorWithTheNoiseItsNearCopiesCarry) {
+  const NearCopies c = near_copies();
+  const double floor_m = c.sigma * std::sqrt(std::numbers::pi / 2.0);  // 0.0627 m
+  MappingOptions dt;
+  dt.model = "dt";
+  CrossValidationOptions random;
+  random.kind = CrossValidationKind::random;
+  CrossValidationOptions blocked;  // the default
+  blocked.block_size = 3.0;
+  // Random folds: a held-out pair's near-copies are in training, the triangulation passes
+  // through them, and the error looks like a fraction of the noise.
+  const CrossValidationResult r = cross_validate(dt, c.pairs, random);
+  EXPECT_LT(r.mean_error_m, 0.3 * floor_m);
+  EXPECT_EQ(r.method.kind, "random");
+  EXPECT_EQ(r.method.block_size, 0.0);
+  // Blocked folds: whole 3 m blocks held out, so no copy of a held-out offset is in training
+  // (but for the rare place on a block's edge), and the error cannot beat the floor.
+  const CrossValidationResult b = cross_validate(dt, c.pairs, blocked);
+  EXPECT_GT(b.mean_error_m, 0.95 * floor_m);
+  EXPECT_EQ(b.method.kind, "blocked");
+  EXPECT_EQ(b.method.block_size, 3.0);
+  EXPECT_EQ(b.method.folds, 5u);
+  EXPECT_EQ(b.method.pairs, 1200u);
+  // The true model (a similarity) is near the floor under blocked folds; random folds rank the
+  // interpolator first, blocked folds the truth.
+  MappingOptions gt;
+  gt.model = "gt";
+  const double gt_blocked = cross_validate(gt, c.pairs, blocked).mean_error_m;
+  EXPECT_LT(gt_blocked, 1.1 * floor_m);
+  EXPECT_LT(r.mean_error_m, cross_validate(gt, c.pairs, random).mean_error_m);
+  EXPECT_LT(gt_blocked, b.mean_error_m);
+}
+
+TEST(BlockedCrossValidation, AutoPicksTheTruthWhereRandomFoldsPickTheInterpolator) {
+  const NearCopies c = near_copies();
+  MappingOptions options;
+  options.model = "auto";
+  options.auto_select.candidates = {"gt", "dt"};
+  auto blocked = make_mapping(options);
+  blocked->fit(c.pairs);
+  EXPECT_EQ(blocked->summary().details.find("chosen")->as_string(), "gt");
+  ASSERT_TRUE(blocked->summary().cv.has_value());
+  EXPECT_EQ(blocked->summary().cv->kind, "blocked");
+  EXPECT_GT(blocked->summary().cv->block_size, 0.0);  // chosen from the pairs
+  options.auto_select.cv.kind = CrossValidationKind::random;
+  auto random = make_mapping(options);
+  random->fit(c.pairs);
+  EXPECT_EQ(random->summary().details.find("chosen")->as_string(), "dt");
+  EXPECT_EQ(random->summary().cv->kind, "random");
+}
+
+TEST(BlockedCrossValidation, RefusesANegativeBlockAndTooFewFolds) {
+  MappingOptions gt;
+  gt.model = "gt";
+  const ReferencePairs pairs =
+      test::make_pairs(test::random_points(100, 3), test::similarity(0.1, 1.0, {1, 2}), 0.01, 4);
+  CrossValidationOptions cv;
+  cv.block_size = -1.0;
+  test::expect_input_error([&] { cross_validate(gt, pairs, cv); }, {"cv.block_size"});
+  cv.block_size = 0.0;
+  cv.folds = 1;
+  test::expect_input_error([&] { cross_validate(gt, pairs, cv); }, {"cv.folds"});
+  MappingOptions chooser;
+  chooser.model = "auto";
+  chooser.auto_select.cv.block_size = -2.0;
+  test::expect_input_error([&] { make_mapping(chooser); }, {"auto_select.cv.block_size"});
+}
+
+}  // namespace
+}  // namespace floorgrid
