@@ -303,8 +303,6 @@ struct DualLocalization {
   std::size_t plan_start_scan = 0;     ///< the scan the plan filter started tracking from
   /// Where the run lies on the plan (the gridmap filter's poses -> plan poses).
   std::optional<PlanRegistrationResult> registration;
-  /// The gridmap registered on the plan directly, when the scale was not given.
-  std::optional<MapRegistration> map_registration;
   DivergenceCount plan_divergences;  ///< the plan filter's, while localizing
   DivergenceCount grid_divergences;  ///< the gridmap filter's
   std::size_t plan_corrections = 0;  ///< improved-proposal corrections of the plan filter

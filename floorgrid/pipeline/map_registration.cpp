@@ -112,12 +112,11 @@ struct AxisMatch {
 
 // The shift of one axis's grid coordinates that best matches the plan's coordinates divided by
 // `scale`, by normalized cross-correlation of their profiles.
-AxisMatch match_axis(const std::vector<double>& grid, double grid_min, int grid_bins,
-                     const cv::Mat& grid_profile, const std::vector<double>& plan_scaled,
-                     double plan_min, double plan_max, double bin) {
+AxisMatch match_axis(double grid_min, int grid_bins, const cv::Mat& grid_profile,
+                     const std::vector<double>& plan_scaled, double plan_min, double plan_max,
+                     double bin) {
   const double start = plan_min - grid_bins * bin;
   const int bins = static_cast<int>(std::ceil((plan_max - start) / bin)) + grid_bins + 1;
-  (void)grid;
   const cv::Mat plan_profile = profile(plan_scaled, start, bin, bins);
   cv::Mat result;
   cv::matchTemplate(plan_profile, grid_profile, result, cv::TM_CCOEFF_NORMED);
@@ -141,7 +140,12 @@ class Scorer {
         grid_field_(occupied_distance_field(gridmap, 2.0)),
         grid_points_(wall_points(gridmap, o.max_points)),
         plan_points_(wall_points(plan, o.max_points)),
-        options_(o) {}
+        options_(o) {
+    for (const Eigen::Vector2d& g : grid_points_)
+      centre_ += g;
+    if (!grid_points_.empty())
+      centre_ /= double(grid_points_.size());
+  }
 
   bool usable() const { return grid_points_.size() >= 10 && plan_points_.size() >= 10; }
   const std::vector<Eigen::Vector2d>& grid_points() const { return grid_points_; }
@@ -211,7 +215,7 @@ class Scorer {
     return best;
   }
 
-  void set_centre(const Eigen::Vector2d& c) { centre_ = c; }
+  const Eigen::Vector2d& centre() const { return centre_; }
 
  private:
   const OccupancyGrid& gridmap_;
@@ -273,9 +277,9 @@ std::vector<Candidate> profile_candidates(const std::vector<Eigen::Vector2d>& gr
         sy[j] = plan_y[j] / s;
       }
       const AxisMatch mx =
-          match_axis(gx, gx_min, gx_bins, gx_profile, sx, *px_min / s, *px_max / s, bin);
+          match_axis(gx_min, gx_bins, gx_profile, sx, *px_min / s, *px_max / s, bin);
       const AxisMatch my =
-          match_axis(gy, gy_min, gy_bins, gy_profile, sy, *py_min / s, *py_max / s, bin);
+          match_axis(gy_min, gy_bins, gy_profile, sy, *py_min / s, *py_max / s, bin);
       Candidate c;
       c.transform.scale = s;
       c.transform.theta = plan_angle + turn - grid_angle;
@@ -332,11 +336,7 @@ MapRegistration register_maps(const OccupancyGrid& gridmap, const OccupancyGrid&
   Scorer scorer(gridmap, plan, options);
   if (!scorer.usable())
     return result;
-  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
-  for (const Eigen::Vector2d& g : scorer.grid_points())
-    centre += g;
-  centre /= double(scorer.grid_points().size());
-  scorer.set_centre(centre);
+  const Eigen::Vector2d& centre = scorer.centre();
 
   const std::vector<Eigen::Vector2d> grid_all = wall_points(gridmap, 40000);
   const std::vector<Eigen::Vector2d> plan_all = wall_points(plan, 40000);

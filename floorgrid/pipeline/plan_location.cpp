@@ -54,7 +54,6 @@ ScaleRange scale_range(const DualMaps& maps, const DualLocalizerInputs& inputs,
   if (inputs.plan_scale || !step.register_maps)
     return options.scale_search.range;
   const MapRegistration reg = register_maps(maps.gridmap(), inputs.plan, step.map_registration);
-  result.map_registration = reg;
   if (!reg.found || reg.best.score < step.map_min_score) {
     result.notes.push_back(
         fmt::format("the gridmap could not be registered on the plan directly ({} candidates, best "
@@ -118,8 +117,10 @@ PlanLocation locate_run_on_plan(const DualMaps& maps, const DualLocalizerInputs&
     result.plan_start_scan = result.grid_start_scan;
     result.plan_scale_estimated = true;
     result.plan_scale_search = location.scale;
-    result.plan_scale_search_std = location.scale * 0.005;
-    result.plan_scale_std = result.plan_scale_search_std;
+    // The registration gives no spread of its scale: none is claimed (0), and the note says so.
+    result.plan_scale_search_std = 0.0;
+    result.plan_scale_std = 0.0;
+    result.notes.push_back("the plan scale's uncertainty is not estimated (taken from the maps)");
   } else if (location.given) {
     location.registration = registration_of(*location.given, location.scale);
     location.start_sigma = step.given_start_sigma;

@@ -177,7 +177,7 @@ TEST(SimulateCommand, FromARealLogWritesADatasetOtherToolsRead) {
   // The plan's map YAML says its (wrong) resolution: true pixel 0.05 m, times 1 / 1.7.
   const io::LoadedMap plan = io::read_map_yaml(dir / "png" / "floorplan.yaml");
   EXPECT_NEAR(plan.grid.resolution(), 0.05 / 1.7, 1e-12);
-  // The log written is the log read (4 ACES saturation readings aside, every field exact).
+  // The log written is the log read: poses and readings exact.
   const io::CarmenLog original =
       io::read_carmen_log(test::data_path("carmen/aces-corrected.log.gz"));
   const io::CarmenLog written = io::read_carmen_log(dir / "png" / "log.carmen");
