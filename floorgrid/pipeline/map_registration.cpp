@@ -8,6 +8,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "floorgrid/maps/distance_field.hpp"
+#include "floorgrid/maps/wall_surface_field.hpp"
 
 namespace floorgrid {
 
@@ -134,9 +135,12 @@ struct Candidate {
 // The 2-D score of a transform (see register_maps).
 class Scorer {
  public:
-  Scorer(const OccupancyGrid& gridmap, const OccupancyGrid& plan, const MapRegistrationOptions& o)
+  Scorer(const OccupancyGrid& gridmap, const OccupancyGrid& plan, PlanWalls plan_walls,
+         const MapRegistrationOptions& o)
       : gridmap_(gridmap),
-        plan_field_(occupied_distance_field(plan, 5.0)),
+        plan_field_(plan, 5.0,
+                    plan_walls == PlanWalls::raster_strokes ? WallSurfaceField::Line::surface
+                                                            : WallSurfaceField::Line::centre),
         grid_field_(occupied_distance_field(gridmap, 2.0)),
         grid_points_(wall_points(gridmap, o.max_points)),
         plan_points_(wall_points(plan, o.max_points)),
@@ -154,7 +158,7 @@ class Scorer {
     ScoredSimilarity s{t, 0.0, 0.0, 0.0};
     double on = 0.0;
     for (const Eigen::Vector2d& g : grid_points_) {
-      const double d = plan_field_.at(t.apply(g)) / t.scale;
+      const double d = plan_field_.distance(t.apply(g)) / t.scale;
       on += std::exp(-0.5 * d * d / (sigma * sigma));
     }
     s.on_walls = on / double(grid_points_.size());
@@ -219,7 +223,7 @@ class Scorer {
 
  private:
   const OccupancyGrid& gridmap_;
-  DistanceField plan_field_;
+  WallSurfaceField plan_field_;
   DistanceField grid_field_;
   std::vector<Eigen::Vector2d> grid_points_;
   std::vector<Eigen::Vector2d> plan_points_;
@@ -330,10 +334,10 @@ Pose2 MapSimilarity::apply(const Pose2& pose) const {
 }
 
 MapRegistration register_maps(const OccupancyGrid& gridmap, const OccupancyGrid& plan,
-                              const MapRegistrationOptions& options) {
+                              PlanWalls plan_walls, const MapRegistrationOptions& options) {
   const auto clock = std::chrono::steady_clock::now();
   MapRegistration result;
-  Scorer scorer(gridmap, plan, options);
+  Scorer scorer(gridmap, plan, plan_walls, options);
   if (!scorer.usable())
     return result;
   const Eigen::Vector2d& centre = scorer.centre();
@@ -345,7 +349,8 @@ MapRegistration register_maps(const OccupancyGrid& gridmap, const OccupancyGrid&
   std::vector<ScoredSimilarity> refined;
   for (const Candidate& c : candidates) {
     const ScoredSimilarity coarse = scorer.refine(c.transform, 4.0 * options.sigma);
-    refined.push_back(scorer.refine(coarse.transform, options.sigma));
+    const ScoredSimilarity medium = scorer.refine(coarse.transform, options.sigma);
+    refined.push_back(scorer.refine(medium.transform, options.sigma / 3.0));
   }
   result.candidates = refined.size();
   std::sort(refined.begin(), refined.end(),
@@ -362,6 +367,17 @@ MapRegistration register_maps(const OccupancyGrid& gridmap, const OccupancyGrid&
   }
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock).count();
   return result;
+}
+
+}  // namespace floorgrid
+
+namespace floorgrid {
+
+ScoredSimilarity score_map_similarity(const OccupancyGrid& gridmap, const OccupancyGrid& plan,
+                                      PlanWalls plan_walls, const MapSimilarity& transform,
+                                      const MapRegistrationOptions& options) {
+  const Scorer scorer(gridmap, plan, plan_walls, options);
+  return scorer.score(transform, options.sigma);
 }
 
 }  // namespace floorgrid

@@ -58,13 +58,25 @@ struct MapRegistration {
   double seconds = 0.0;        ///< wall clock
 };
 
+/// How the plan grid's walls were drawn, which says where their surfaces are.
+enum class PlanWalls {
+  raster_strokes,  ///< a raster drawing: strokes of any thickness; the wall is the stroke's edge
+  vector_lines,    ///< a vector drawing rasterized: the wall is the line along the cells' centres
+};
+
 /// Registers the gridmap on the plan over scale, rotation and translation, coarse to fine:
 /// both maps' walls are turned to their dominant direction; their wall profiles along both axes
 /// are correlated over the scale lattice and every shift, for the four quarter turns (and 36
 /// turns when a map has no dominant direction); the best candidates are scored in 2D (the
 /// gridmap's walls near the plan's, minus the plan's walls in space the gridmap saw free) and
-/// refined by a pattern search over scale, angle and translation.
+/// refined by a pattern search over scale, angle and translation. The gridmap's walls are matched
+/// to the plan's wall surfaces as `plan_walls` says (a stroke's free-side edge, or a line).
 MapRegistration register_maps(const OccupancyGrid& gridmap, const OccupancyGrid& plan,
-                              const MapRegistrationOptions& options = {});
+                              PlanWalls plan_walls, const MapRegistrationOptions& options = {});
+
+/// The 2-D score register_maps gives `transform` (at its final closeness, options.sigma).
+ScoredSimilarity score_map_similarity(const OccupancyGrid& gridmap, const OccupancyGrid& plan,
+                                      PlanWalls plan_walls, const MapSimilarity& transform,
+                                      const MapRegistrationOptions& options = {});
 
 }  // namespace floorgrid
