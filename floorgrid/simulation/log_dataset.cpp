@@ -67,7 +67,7 @@ cv::Mat mask_of(const OccupancyGrid& grid, CellState state) {
 
 // The walls a drafter would draw from the gridmap: occupied blobs (gaps of 0.2 m closed) at
 // least `min_extent` metres across, thickened by `thickness - 1` cells into space the laser never
-// saw free (so the wall's surface stays where the laser found it).
+// saw free (so the wall's surface stays where the laser found it: see drawn_as_wall).
 cv::Mat drawn_walls(const OccupancyGrid& gridmap, double min_extent, int thickness,
                     LogDatasetStatistics& s) {
   // A drafter draws a wall seen as dots (sparse scans) as one stroke: gaps up to 0.2 m close.
@@ -145,8 +145,27 @@ WarpParams choose_warp(const Eigen::Matrix2Xd& walls_in_grid, double theta, doub
   return warp;
 }
 
+// Whether the point at continuous cell coordinates `c` of wall cell (ix, iy) is drawn as wall.
+// A laser's wall surface lies, on average, on the centre of the cell its beams ended in, so a
+// wall cell's half toward a cell that is no wall is room, not wall, unless the cell is the whole
+// wall there (one cell thick along that axis).
+bool drawn_as_wall(const cv::Mat& walls, const Eigen::Vector2d& c, int ix, int iy) {
+  const auto wall = [&](int jx, int jy) {
+    return jx >= 0 && jy >= 0 && jx < walls.cols && jy < walls.rows &&
+           walls.at<std::uint8_t>(jy, jx) != 0;
+  };
+  if (!wall(ix, iy))
+    return false;
+  const bool low_x = c.x() - ix < 0.5, low_y = c.y() - iy < 0.5;
+  const int near_x = low_x ? ix - 1 : ix + 1, far_x = low_x ? ix + 1 : ix - 1;
+  const int near_y = low_y ? iy - 1 : iy + 1, far_y = low_y ? iy + 1 : iy - 1;
+  if (!wall(near_x, iy) && wall(far_x, iy))
+    return false;
+  return wall(ix, near_y) || !wall(ix, far_y);
+}
+
 // Renders the drawn walls through the warp onto a raster of the world: pixel `pixel` metres,
-// lower-left corner at `corner`, set where the grid cell under the pixel's centre is a wall.
+// lower-left corner at `corner`, set where the point under the pixel's centre is drawn as wall.
 cv::Mat render_walls(const cv::Mat& walls, const GridGeometry& geometry, const SimulatedWarp& warp,
                      const Eigen::Vector2d& corner, double pixel, int width, int height) {
   cv::Mat raster(height, width, CV_8UC1, cv::Scalar(0));
@@ -158,8 +177,10 @@ cv::Mat render_walls(const cv::Mat& walls, const GridGeometry& geometry, const S
     auto* row = raster.ptr<std::uint8_t>(y);
     for (int x = 0; x < width; ++x) {
       int ix = 0, iy = 0;
-      if (geometry.cell_of(in_grid.col(x), ix, iy) && walls.at<std::uint8_t>(iy, ix) != 0)
+      if (geometry.cell_of(in_grid.col(x), ix, iy) &&
+          drawn_as_wall(walls, geometry.to_cell_coordinates(in_grid.col(x)), ix, iy)) {
         row[x] = 255;
+      }
     }
   }
   return raster;
