@@ -45,6 +45,13 @@ void run_align(const std::string& dataset, const std::string& out, const JobOpti
   progress.finish();
   require_localized(a.localization.status, d);
   print_localization(a.localization, a.pair_errors);
+  if (a.plan_match.judged) {
+    fmt::print(
+        "plan match  score {:.2f} under the pairs' similarity ({:.0f}% of the gridmap's "
+        "walls on the plan's, {:.0f}% of the plan's walls in free space)\n",
+        a.plan_match.score.score, 100.0 * a.plan_match.score.on_walls,
+        100.0 * a.plan_match.score.in_free_space);
+  }
   print_models(a);
   const std::string name =
       d.manifest.name.empty() ? d.manifest.folder().filename().string() : d.manifest.name;
@@ -54,6 +61,7 @@ void run_align(const std::string& dataset, const std::string& out, const JobOpti
   // What was learnt is written (metrics.json holds the localization's story), but a run that
   // made no pairs is a failure, not a result.
   require_pairs(a.localization, d);
+  require_plan_match(a.plan_match, d, options.align.localization.plan_location.min_plan_match);
 }
 
 void add_align_command(CLI::App& root) {

@@ -42,6 +42,10 @@ void add_pairs_command(CLI::App& root) {
     progress.finish();
     require_localized(l.status, d);
     require_pairs(l, d);
+    const PlanMatch match = judge_plan_match(
+        d.gridmap, d.plan_grid, d.plan ? PlanWalls::vector_lines : PlanWalls::raster_strokes,
+        l.pairs, options.align.localization.plan_location.map_registration);
+    require_plan_match(match, d, options.align.localization.plan_location.min_plan_match);
     io::write_pairs_csv(l.pairs, out);
     std::optional<ErrorStatistics> errors;
     if (d.truth_warp && l.pairs.size() > 0) {

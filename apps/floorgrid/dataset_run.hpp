@@ -1,5 +1,7 @@
 #pragma once
 
+#include "floorgrid/pipeline/plan_match.hpp"
+
 #include <optional>
 
 #include "floorgrid/io/dataset_loader.hpp"
@@ -24,5 +26,10 @@ void require_localized(const LocalizationStatus& status, const io::LoadedDataset
 /// Throws AlignmentFailure when the localization made no pairs: which filter failed, where
 /// they were, the plan scale used, the localizer's notes, and what to try.
 void require_pairs(const DualLocalization& localization, const io::LoadedDataset& dataset);
+
+/// Throws AlignmentFailure (with what the maps show and what to try) when the plan does not
+/// match the gridmap under the pairs' similarity (score below `min_score`): a plan of another
+/// building or floor on which the filters converged anyway.
+void require_plan_match(const PlanMatch& match, const io::LoadedDataset& dataset, double min_score);
 
 }  // namespace floorgrid::app

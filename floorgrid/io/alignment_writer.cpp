@@ -104,6 +104,13 @@ json metrics_json(const Alignment& a, const std::string& dataset, const Alignmen
                        {"plan_divergences", l.plan_divergences.by_reason},
                        {"grid_divergences", l.grid_divergences.by_reason},
                        {"notes", l.notes}};
+  if (a.plan_match.judged) {
+    const ScoredSimilarity& m = a.plan_match.score;
+    j["plan_match"] = {{"score", number(m.score)},
+                       {"on_walls", number(m.on_walls)},
+                       {"in_free_space", number(m.in_free_space)},
+                       {"plan_scale", number(1.0 / m.transform.scale)}};
+  }
   j["domain"] = {{"kind", a.domain.kind}, {"points", a.domain.points_in_plan.cols()}};
   j["models"] = json::object();
   for (const ModelAlignment& m : a.models)

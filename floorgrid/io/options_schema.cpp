@@ -761,6 +761,11 @@ void visit(OptionVisitor& v, PlanLocationOptions& o) {
           {.unit = "",
            .doc = "Score margin over the runner-up for its scale and pose to be used as they are",
            .choices = {}});
+  v.field("min_plan_match", o.min_plan_match,
+          {.unit = "",
+           .doc = "Score the maps need under the pairs' similarity, else the plan is another "
+                  "building's and the run fails",
+           .choices = {}});
   v.field("given_start_sigma", o.given_start_sigma,
           {.unit = "m", .doc = "Plan filter's first spread around a given start", .choices = {}});
   v.field("given_start_heading_sigma", o.given_start_heading_sigma,

@@ -10,6 +10,7 @@
 #include "floorgrid/evaluation/model_comparison.hpp"
 #include "floorgrid/evaluation/model_evaluation.hpp"
 #include "floorgrid/pipeline/dual_localizer.hpp"
+#include "floorgrid/pipeline/plan_match.hpp"
 
 namespace floorgrid {
 
@@ -67,6 +68,7 @@ struct AlignmentProgress {
 struct Alignment {
   DualLocalization localization;               ///< pairs and how they were made
   std::optional<ErrorStatistics> pair_errors;  ///< pairs against the truth (with a truth)
+  PlanMatch plan_match;                        ///< whether the plan is of this building at all
   EvaluationDomain domain;                     ///< where models are judged
   std::vector<ModelAlignment> models;          ///< in the order fitted
   std::string chosen;                          ///< the model `auto` chose ("" without auto)
@@ -88,6 +90,10 @@ using AlignmentProgressCallback = std::function<void(const AlignmentProgress&)>;
 /// localize_dual).
 Alignment align(const AlignmentInputs& inputs, const AlignmentOptions& options = {},
                 const AlignmentProgressCallback& progress = {});
+
+/// judge_plan_match on the inputs' maps and `pairs`.
+PlanMatch judge_plan_match(const AlignmentInputs& inputs, const ReferencePairs& pairs,
+                           const MapRegistrationOptions& options);
 
 /// The distance from each plan wall point, mapped by `plan_to_grid`, to the nearest occupied
 /// cell of `gridmap` (capped at `cap` metres), summarized over all points and over those

@@ -113,6 +113,13 @@ struct PlanLocationOptions {
   /// When its best beats the runner-up by this much, its scale and pose are used as they are
   /// (the plan filter starts there, no scale search; the scale is refitted on the pairs' scans).
   double map_clear_margin = 0.15;
+  /// After the pairs: the similarity they give, refined on the two maps as the registration
+  /// refines, must score at least this (gridmap walls on plan walls minus plan walls in free
+  /// space, [-1, 1]) or the run fails: the plan is of another building or floor. The right plan
+  /// scored 0.5-0.8 on the semi-real datasets (bends up to a metre) and 0.26 on fr079's drawing,
+  /// other buildings' plans -0.54 to -0.27 from the pairs filters made on them, and 0.08 from
+  /// pairs of the right building (the refinement hides the plan where the robot saw nothing).
+  double min_plan_match = 0.15;
   /// Plan metres and radians: the plan filter's first spread around a given start pose...
   double given_start_sigma = 0.2;
   double given_start_heading_sigma = 0.1;  ///< radians

@@ -310,6 +310,14 @@ std::vector<Candidate> profile_candidates(const std::vector<Eigen::Vector2d>& gr
   return kept;
 }
 
+// Refined coarse to fine: closeness 4 sigma, sigma, then sigma / 3 (which resolves the scale to
+// a few parts in 10^4 on a building's walls); scored at sigma, as the options' thresholds are.
+ScoredSimilarity refine_in_steps(const Scorer& scorer, const MapSimilarity& start, double sigma) {
+  const ScoredSimilarity coarse = scorer.refine(start, 4.0 * sigma);
+  const ScoredSimilarity medium = scorer.refine(coarse.transform, sigma);
+  return scorer.score(scorer.refine(medium.transform, sigma / 3.0).transform, sigma);
+}
+
 bool distinct(const MapSimilarity& a, const MapSimilarity& b, const Eigen::Vector2d& centre) {
   if (std::abs(std::log(a.scale / b.scale)) > 0.05)
     return true;
@@ -347,11 +355,8 @@ MapRegistration register_maps(const OccupancyGrid& gridmap, const OccupancyGrid&
   const std::vector<Candidate> candidates = profile_candidates(
       grid_all, plan_all, dominant_direction(gridmap), dominant_direction(plan), options);
   std::vector<ScoredSimilarity> refined;
-  for (const Candidate& c : candidates) {
-    const ScoredSimilarity coarse = scorer.refine(c.transform, 4.0 * options.sigma);
-    const ScoredSimilarity medium = scorer.refine(coarse.transform, options.sigma);
-    refined.push_back(scorer.refine(medium.transform, options.sigma / 3.0));
-  }
+  for (const Candidate& c : candidates)
+    refined.push_back(refine_in_steps(scorer, c.transform, options.sigma));
   result.candidates = refined.size();
   std::sort(refined.begin(), refined.end(),
             [](const ScoredSimilarity& a, const ScoredSimilarity& b) { return a.score > b.score; });
@@ -372,6 +377,15 @@ MapRegistration register_maps(const OccupancyGrid& gridmap, const OccupancyGrid&
 }  // namespace floorgrid
 
 namespace floorgrid {
+
+ScoredSimilarity refine_map_similarity(const OccupancyGrid& gridmap, const OccupancyGrid& plan,
+                                       PlanWalls plan_walls, const MapSimilarity& start,
+                                       const MapRegistrationOptions& options) {
+  const Scorer scorer(gridmap, plan, plan_walls, options);
+  if (!scorer.usable())
+    return {start, -1.0, 0.0, 1.0};
+  return refine_in_steps(scorer, start, options.sigma);
+}
 
 ScoredSimilarity score_map_similarity(const OccupancyGrid& gridmap, const OccupancyGrid& plan,
                                       PlanWalls plan_walls, const MapSimilarity& transform,

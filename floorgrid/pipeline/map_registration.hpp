@@ -74,6 +74,11 @@ enum class PlanWalls {
 MapRegistration register_maps(const OccupancyGrid& gridmap, const OccupancyGrid& plan,
                               PlanWalls plan_walls, const MapRegistrationOptions& options = {});
 
+/// `start` refined on the two maps as register_maps refines its candidates, with its score.
+ScoredSimilarity refine_map_similarity(const OccupancyGrid& gridmap, const OccupancyGrid& plan,
+                                       PlanWalls plan_walls, const MapSimilarity& start,
+                                       const MapRegistrationOptions& options = {});
+
 /// The 2-D score register_maps gives `transform` (at its final closeness, options.sigma).
 ScoredSimilarity score_map_similarity(const OccupancyGrid& gridmap, const OccupancyGrid& plan,
                                       PlanWalls plan_walls, const MapSimilarity& transform,
