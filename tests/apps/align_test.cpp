@@ -16,13 +16,9 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 using test::quoted;
+using test::read_json;
 using test::run_floorgrid;
 using test::TempDir;
-
-json read_json(const fs::path& path) {
-  std::ifstream in(path);
-  return json::parse(in);
-}
 
 /// Simulates `preset` and aligns it; returns metrics.json.
 json simulate_and_align(const std::string& preset, int seed, const TempDir& dir) {

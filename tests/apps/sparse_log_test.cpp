@@ -17,13 +17,9 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 using test::quoted;
+using test::read_json;
 using test::run_floorgrid;
 using test::TempDir;
-
-json read_json(const fs::path& path) {
-  std::ifstream in(path);
-  return json::parse(in);
-}
 
 void expect_aligned(double plan_scale) {
   FLOORGRID_REQUIRE_DATA("carmen/orebro-corrected.log.gz");

@@ -83,4 +83,9 @@ CommandResult run_floorgrid(const std::string& args) {
   return run_command(std::string("'") + FLOORGRID_BINARY + "' " + args);
 }
 
+nlohmann::json read_json(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  return nlohmann::json::parse(in);
+}
+
 }  // namespace floorgrid::test

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
 
 namespace floorgrid::test {
@@ -30,6 +31,9 @@ class TempDir {
 void write_file(const std::filesystem::path& path, const std::string& text);
 /// Reads a whole file as bytes.
 std::string read_file(const std::filesystem::path& path);
+
+/// A JSON file parsed (a test fails on bad JSON with the parser's exception).
+nlohmann::json read_json(const std::filesystem::path& path);
 
 /// Result of running a command: exit status and captured output.
 struct CommandResult {
