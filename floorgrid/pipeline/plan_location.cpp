@@ -76,18 +76,14 @@ ScaleRange scale_range(const DualMaps& maps, const DualLocalizerInputs& inputs,
       1.0 / reg.runner_up.transform.scale, reg.seconds));
   const bool is_clear = reg.best.score - reg.runner_up.score >= step.map_clear_margin;
   const ScaleRange& usual = options.scale_search.range;
-  if (scale >= usual.min && scale <= usual.max) {
-    // Within the usual range the plan filter's search and refit find a vector plan's scale
-    // more precisely than one similarity of two maps bent against each other: they run as they
-    // would without this. On a raster plan they are biased by its strokes' thickness (a scan
-    // stretches into a thick wall for free, -0.2 to -1% on the semi-real datasets) and the
-    // registration is not (within 0.15% there): its scale is kept.
-    if (is_clear && !inputs.plan_geometry)
-      clear = reg.best.transform;
-    return usual;
-  }
+  // A clear registration's scale and pose are kept as they are: the plan filter's search and
+  // refit are biased by how the walls are drawn (a raster's thick strokes: -0.2 to -1%; a DXF's
+  // lines traced around them: -0.25 to -0.56% on the semi-real datasets), the registration is
+  // not (within 0.15% on every raster and DXF plan of the matrix).
   if (is_clear)
     clear = reg.best.transform;
+  if (scale >= usual.min && scale <= usual.max)
+    return usual;
   return {scale / (1.0 + step.map_scale_margin), scale * (1.0 + step.map_scale_margin)};
 }
 
@@ -111,7 +107,7 @@ PlanLocation locate_run_on_plan(const DualMaps& maps, const DualLocalizerInputs&
     // The maps agree on one similarity: the plan filter starts where it puts the gridmap
     // filter's pose, at its scale.
     location.from_maps = true;
-    location.keep_scale = !inputs.plan_geometry;
+    location.keep_scale = true;
     location.scale = 1.0 / clear->scale;
     location.scale_sigma = 0.0;
     location.registration = PlanRegistration(grid_start, clear->apply(grid_start), location.scale);
