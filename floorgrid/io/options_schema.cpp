@@ -489,6 +489,23 @@ void visit(OptionVisitor& v, FilterRunnerOptions& o) {
           [&] { visit(v, o.match_observation); });
   v.field("threads", o.threads,
           {.unit = "", .doc = "Threads of the observation model", .choices = {}});
+  v.group("guided_noise", "Noise of a motion taken from a guide (another filter's poses)",
+          [&] { visit(v, o.guided_noise); });
+  v.field("guide_max_translation", o.guide_max_translation,
+          {.unit = "m",
+           .doc = "A guide's motion farther than this (plus a share of the step) from the "
+                  "odometry's is not trusted",
+           .choices = {}});
+  v.field("guide_translation_share", o.guide_translation_share,
+          {.unit = "", .doc = "That share of the odometry's step", .choices = {}});
+  v.field("guide_max_rotation", o.guide_max_rotation,
+          {.unit = "rad",
+           .doc = "Likewise for the turn (plus per metre of the step, plus a share of the turn)",
+           .choices = {}});
+  v.field("guide_rotation_per_metre", o.guide_rotation_per_metre,
+          {.unit = "rad/m", .doc = "That allowance per metre of the step", .choices = {}});
+  v.field("guide_rotation_share", o.guide_rotation_share,
+          {.unit = "", .doc = "That share of the odometry's turn", .choices = {}});
 }
 
 void visit(OptionVisitor& v, ObservationOptions& o) {
@@ -671,7 +688,12 @@ void visit(OptionVisitor& v, DualCheckOptions& o) {
            .choices = {}});
   v.field("reconverge_scans", o.reconverge_scans,
           {.unit = "scans",
-           .doc = "Unconverged scans before the plan filter is re-initialized",
+           .doc = "Unconverged or disagreeing scans before the plan filter is re-initialized",
+           .choices = {}});
+  v.field("restart_when_lost", o.restart_when_lost,
+          {.unit = "",
+           .doc = "Re-initialize a plan filter that declares itself lost where the gridmap "
+                  "filter says, at once",
            .choices = {}});
   v.field("local_reinitialize_sigma", o.local_reinitialize_sigma,
           {.unit = "m",
@@ -868,6 +890,11 @@ void visit(OptionVisitor& v, DualLocalizerOptions& o) {
   v.field("refine_poses", o.refine_poses,
           {.unit = "",
            .doc = "Pairs only from scans whose scan match succeeded on both maps",
+           .choices = {}});
+  v.field("guide_plan_by_gridmap", o.guide_plan_by_gridmap,
+          {.unit = "",
+           .doc = "The plan filter moves by the converged gridmap filter's motion, not the "
+                  "odometry's",
            .choices = {}});
   v.group("gridmap_localization", "Step 1", [&] { visit(v, o.gridmap_localization); });
   v.group("plan_location", "Step 2", [&] { visit(v, o.plan_location); });
