@@ -405,7 +405,7 @@ int main(int argc, char** argv) {
     std::ofstream out(trace_out);
     out << "scan,step_m,turn_deg,grid_conv,grid_err,grid_fit,grid_match,plan_state,plan_conv,"
            "plan_err,plan_head_deg,plan_fit,pos_std,head_std,plan_match,match_err,reinit,"
-           "consistent,pairs\n";
+           "consistent,pairs,grid_pos_std,grid_head_std,grid_updated,plan_guide\n";
     for (const ScanRecord& s : r.scans) {
       // The truth holds one pose per scan in line order (timestamps may repeat).
       if (s.scan >= truth["trajectory"]["poses"].size())
@@ -420,7 +420,7 @@ int main(int argc, char** argv) {
       out << fmt::format(
           "{},{:.3f},{:.1f},{},{:.3f},{:.2f},{},{},{},{:.3f},{:.2f},{:.2f},{:.3f},{:.3f},{},{:.3f},"
           "{},"
-          "{},{}\n",
+          "{},{}",
           s.scan, step, turn, s.grid.converged ? 1 : 0,
           std::hypot(s.grid.pose.x - t[4], s.grid.pose.y - t[5]), s.grid.fit,
           to_string(s.grid.match.failure), to_string(s.plan.state), s.plan.converged ? 1 : 0,
@@ -429,7 +429,9 @@ int main(int argc, char** argv) {
           s.plan.estimate.heading_std, to_string(s.plan.match.failure),
           std::hypot(s.plan.match.pose.x - t[1] * plan_per_world,
                      s.plan.match.pose.y - t[2] * plan_per_world),
-          s.plan_reinitialized ? 1 : 0, s.consistent ? 1 : 0, s.pairs);
+          s.plan_reinitialized ? 1 : 0, s.consistent ? 1 : 0, s.pairs)
+          << fmt::format(",{:.3f},{:.3f},{},{}\n", s.grid.estimate.position_std,
+                         s.grid.estimate.heading_std, s.grid.updated ? 1 : 0, 0);
     }
   }
   for (Eigen::Index i = 0; i < r.pairs.size(); ++i)

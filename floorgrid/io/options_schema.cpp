@@ -236,6 +236,15 @@ void visit(OptionVisitor& v, ConvergenceOptions& o) {
           {.unit = "",
            .doc = "Consecutive failing scans before a converged filter is no longer converged",
            .choices = {}});
+  v.field("rejoin_window", o.rejoin_window,
+          {.unit = "",
+           .doc = "A filter that failed at most this many scans since it was converged rejoins "
+                  "after min_rejoin_scans good scans (0: never)",
+           .choices = {}});
+  v.field("min_rejoin_scans", o.min_rejoin_scans,
+          {.unit = "",
+           .doc = "Consecutive scans meeting every criterion for such a filter to rejoin",
+           .choices = {}});
 }
 
 void visit(OptionVisitor& v, HypothesisSeedingOptions& o) {
@@ -688,7 +697,7 @@ void visit(OptionVisitor& v, DualCheckOptions& o) {
            .choices = {}});
   v.field("reconverge_scans", o.reconverge_scans,
           {.unit = "scans",
-           .doc = "Unconverged or disagreeing scans before the plan filter is re-initialized",
+           .doc = "Unconverged scans before the plan filter is re-initialized",
            .choices = {}});
   v.field("restart_when_lost", o.restart_when_lost,
           {.unit = "",

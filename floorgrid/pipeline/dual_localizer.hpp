@@ -166,12 +166,12 @@ struct DualCheckOptions {
   /// one similarity for the whole plan), which also judges the pairs then.
   double consistency_distance = 3.0;
   double consistency_heading = 0.5;  ///< radians
-  /// Consecutive disagreeing scans (the gridmap filter converged) after which the plan filter
-  /// is re-initialized around the registered gridmap pose.
+  /// Consecutive disagreeing scans (the gridmap filter converged; the plan filter converged or
+  /// not) after which the plan filter is re-initialized around the registered gridmap pose.
   int consistency_scans = 10;
-  /// Scans a plan filter may stay unconverged or disagreeing, in any mix (the gridmap filter
-  /// converged), before it is re-initialized there as well.
-  int reconverge_scans = 10;
+  /// Scans a plan filter may stay unconverged (the gridmap filter converged) before it is
+  /// re-initialized there as well.
+  int reconverge_scans = 40;
   /// A plan filter that declares itself lost (diverged, recovering) while the gridmap filter
   /// is converged is re-initialized at once where the gridmap filter says, instead of
   /// searching the plan by itself (a plan's look-alike rooms and corridors lure it away).

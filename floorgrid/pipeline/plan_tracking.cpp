@@ -26,10 +26,11 @@ std::optional<PlanRestart> DualCheck::judge(std::size_t scan, ScanRecord& record
                            : record.consistent;
   if (plan.converged && record.consistent && plan.match.ok() && grid.match.ok())
     local_.add(scan, grid.match.pose, plan.match.pose);
-  disagreeing_ = plan.converged && !agrees ? disagreeing_ + 1 : 0;
-  // Not converged or disagreeing, in any mix: a filter that flickers between the two (a
-  // wrong place that fits now and then) is as lost as one that stays in either.
-  unconverged_ = plan.converged && agrees ? 0 : unconverged_ + 1;
+  // Converged or not: a filter that flickers between converging in a wrong place and doubting
+  // it is as far off as one that stays converged there. One that agrees but cannot converge (a
+  // place the plan draws few of the walls the laser sees) is left to track.
+  disagreeing_ = agrees ? 0 : disagreeing_ + 1;
+  unconverged_ = plan.converged ? 0 : unconverged_ + 1;
   // The plan filter declared itself lost: its own recovery would search the whole plan, where
   // a drawing of walls has look-alike places; the gridmap filter knows where the robot is.
   const bool lost =

@@ -32,7 +32,7 @@ class DualCheck {
   const PlanRegistration& global_;
   double scale_;
   LocalRegistration local_;
-  int disagreeing_ = 0;  // consecutive scans the converged plan filter disagreed
+  int disagreeing_ = 0;  // consecutive scans the plan filter disagreed
   int unconverged_ = 0;  // consecutive scans the plan filter was not converged
 };
 
