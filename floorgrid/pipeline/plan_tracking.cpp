@@ -1,5 +1,6 @@
 #include "floorgrid/pipeline/plan_tracking.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "floorgrid/pipeline/dual_pairs.hpp"
@@ -27,9 +28,11 @@ std::optional<PlanRestart> DualCheck::judge(std::size_t scan, ScanRecord& record
   if (plan.converged && record.consistent && plan.match.ok() && grid.match.ok())
     local_.add(scan, grid.match.pose, plan.match.pose);
   // Converged or not: a filter that flickers between converging in a wrong place and doubting
-  // it is as far off as one that stays converged there. One that agrees but cannot converge (a
-  // place the plan draws few of the walls the laser sees) is left to track.
-  disagreeing_ = agrees ? 0 : disagreeing_ + 1;
+  // it is as far off as one that stays converged there; and one that hovers about the
+  // tolerance, agreeing now and then, as one that disagrees throughout (an agreeing scan only
+  // takes one disagreeing scan back). One that agrees but cannot converge (a place the plan
+  // draws few of the walls the laser sees) is left to track.
+  disagreeing_ = agrees ? std::max(0, disagreeing_ - 1) : disagreeing_ + 1;
   unconverged_ = plan.converged ? 0 : unconverged_ + 1;
   // The plan filter declared itself lost: its own recovery would search the whole plan, where
   // a drawing of walls has look-alike places; the gridmap filter knows where the robot is.
