@@ -500,6 +500,12 @@ void visit(OptionVisitor& v, FilterRunnerOptions& o) {
           {.unit = "", .doc = "Threads of the observation model", .choices = {}});
   v.group("guided_noise", "Noise of a motion taken from a guide (another filter's poses)",
           [&] { visit(v, o.guided_noise); });
+  v.field("guide_min_translation", o.guide_min_translation,
+          {.unit = "m",
+           .doc = "Only steps of at least this much odometry (or guide_min_rotation) are guided",
+           .choices = {}});
+  v.field("guide_min_rotation", o.guide_min_rotation,
+          {.unit = "rad", .doc = "Likewise for the turn", .choices = {}});
   v.field("guide_max_translation", o.guide_max_translation,
           {.unit = "m",
            .doc = "A guide's motion farther than this (plus a share of the step) from the "

@@ -54,6 +54,9 @@ std::optional<OdometryMotion> FilterRunner::guided_motion(std::size_t from, std:
   const Pose2 odometry = log_.scans[from].robot_pose.between(log_.scans[to].robot_pose);
   const Pose2 guided = guide_[from]->between(*guide_[to]);
   const double step = odometry.translation().norm();
+  if (step < options_.guide_min_translation &&
+      std::abs(odometry.theta) < options_.guide_min_rotation)
+    return std::nullopt;
   const double off = (guided.translation() - odometry.translation()).norm();
   const double turned = std::abs(normalize_angle(guided.theta - odometry.theta));
   if (off > options_.guide_max_translation + options_.guide_translation_share * step ||

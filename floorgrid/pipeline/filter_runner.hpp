@@ -42,6 +42,12 @@ struct FilterRunnerOptions {
   /// poses are within a few centimetres and tenths of a degree, and a plan drawn with a bend
   /// strains by about a centimetre per metre.
   MotionNoise guided_noise{.alpha1 = 0.001, .alpha2 = 0.0002, .alpha3 = 0.002, .alpha4 = 0.002};
+  /// Only steps of at least this many metres or radians of odometry are guided: over small
+  /// steps the odometry is precise enough, and a plan drawn unlike the building (a room drawn
+  /// shallower than it is) needs the odometry's looser noise to slide along it (real fr079:
+  /// guiding every step lost 3% of its converged scans).
+  double guide_min_translation = 0.25;
+  double guide_min_rotation = 0.25;  ///< radians
   /// A guide's motion farther from the odometry's than this is not trusted (the guide jumped):
   /// metres plus a share of the odometry's step ...
   double guide_max_translation = 0.3;
