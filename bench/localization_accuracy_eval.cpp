@@ -156,7 +156,7 @@ int main(int argc, char** argv) {
   std::optional<Pose2> grid_offset;
   std::size_t max_scans = 0;
   int search_scans = 0;
-  std::string export_log, poses_out;
+  std::string export_log, poses_out, trace_out;
   bool search_lf = false;
   for (int i = 2; i < argc; ++i) {
     const std::string a = argv[i];
@@ -196,6 +196,8 @@ int main(int argc, char** argv) {
       search_lf = true;
     } else if (a == "--export-log" && i + 1 < argc) {
       export_log = argv[++i];
+    } else if (a == "--trace" && i + 1 < argc) {
+      trace_out = argv[++i];
     } else if (a == "--poses" && i + 1 < argc) {
       poses_out = argv[++i];
     } else if (a == "--bad-pairs")
@@ -398,6 +400,40 @@ int main(int argc, char** argv) {
                  }
                  return n ? error_char(e / n) : '-';
                }));
+  if (!trace_out.empty()) {
+    // One line per scan: each filter's state and its error against the truth.
+    std::ofstream out(trace_out);
+    out << "scan,step_m,turn_deg,grid_conv,grid_err,grid_fit,grid_match,plan_state,plan_conv,"
+           "plan_err,plan_head_deg,plan_fit,pos_std,head_std,plan_match,match_err,reinit,"
+           "consistent,pairs,grid_pos_std,grid_head_std,grid_updated,plan_guide\n";
+    for (const ScanRecord& s : r.scans) {
+      // The truth holds one pose per scan in line order (timestamps may repeat).
+      if (s.scan >= truth["trajectory"]["poses"].size())
+        continue;
+      const std::vector<double> t = truth["trajectory"]["poses"][s.scan].get<std::vector<double>>();
+      double step = 0.0, turn = 0.0;
+      if (s.scan > 0) {
+        const Pose2 a = d.log->scans[s.scan - 1].robot_pose, b = d.log->scans[s.scan].robot_pose;
+        step = std::hypot(b.x - a.x, b.y - a.y);
+        turn = std::abs(wrap(b.theta - a.theta)) * 180 / M_PI;
+      }
+      out << fmt::format(
+          "{},{:.3f},{:.1f},{},{:.3f},{:.2f},{},{},{},{:.3f},{:.2f},{:.2f},{:.3f},{:.3f},{},{:.3f},"
+          "{},"
+          "{},{}",
+          s.scan, step, turn, s.grid.converged ? 1 : 0,
+          std::hypot(s.grid.pose.x - t[4], s.grid.pose.y - t[5]), s.grid.fit,
+          to_string(s.grid.match.failure), to_string(s.plan.state), s.plan.converged ? 1 : 0,
+          std::hypot(s.plan.pose.x - t[1] * plan_per_world, s.plan.pose.y - t[2] * plan_per_world),
+          wrap(s.plan.pose.theta - t[3]) * 180 / M_PI, s.plan.fit, s.plan.estimate.position_std,
+          s.plan.estimate.heading_std, to_string(s.plan.match.failure),
+          std::hypot(s.plan.match.pose.x - t[1] * plan_per_world,
+                     s.plan.match.pose.y - t[2] * plan_per_world),
+          s.plan_reinitialized ? 1 : 0, s.consistent ? 1 : 0, s.pairs)
+          << fmt::format(",{:.3f},{:.3f},{},{}\n", s.grid.estimate.position_std,
+                         s.grid.estimate.heading_std, s.grid.updated ? 1 : 0, 0);
+    }
+  }
   for (Eigen::Index i = 0; i < r.pairs.size(); ++i)
     pair.v.push_back(
         (d.truth_warp->plan_to_grid(r.pairs.points_in_plan.col(i)) - r.pairs.points_in_grid.col(i))

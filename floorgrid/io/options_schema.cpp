@@ -236,6 +236,15 @@ void visit(OptionVisitor& v, ConvergenceOptions& o) {
           {.unit = "",
            .doc = "Consecutive failing scans before a converged filter is no longer converged",
            .choices = {}});
+  v.field("rejoin_window", o.rejoin_window,
+          {.unit = "",
+           .doc = "A filter that failed at most this many scans since it was converged rejoins "
+                  "after min_rejoin_scans good scans (0: never)",
+           .choices = {}});
+  v.field("min_rejoin_scans", o.min_rejoin_scans,
+          {.unit = "",
+           .doc = "Consecutive scans meeting every criterion for such a filter to rejoin",
+           .choices = {}});
 }
 
 void visit(OptionVisitor& v, HypothesisSeedingOptions& o) {
@@ -489,6 +498,29 @@ void visit(OptionVisitor& v, FilterRunnerOptions& o) {
           [&] { visit(v, o.match_observation); });
   v.field("threads", o.threads,
           {.unit = "", .doc = "Threads of the observation model", .choices = {}});
+  v.group("guided_noise", "Noise of a motion taken from a guide (another filter's poses)",
+          [&] { visit(v, o.guided_noise); });
+  v.field("guide_min_translation", o.guide_min_translation,
+          {.unit = "m",
+           .doc = "Only steps of at least this much odometry (or guide_min_rotation) are guided",
+           .choices = {}});
+  v.field("guide_min_rotation", o.guide_min_rotation,
+          {.unit = "rad", .doc = "Likewise for the turn", .choices = {}});
+  v.field("guide_max_translation", o.guide_max_translation,
+          {.unit = "m",
+           .doc = "A guide's motion farther than this (plus a share of the step) from the "
+                  "odometry's is not trusted",
+           .choices = {}});
+  v.field("guide_translation_share", o.guide_translation_share,
+          {.unit = "", .doc = "That share of the odometry's step", .choices = {}});
+  v.field("guide_max_rotation", o.guide_max_rotation,
+          {.unit = "rad",
+           .doc = "Likewise for the turn (plus per metre of the step, plus a share of the turn)",
+           .choices = {}});
+  v.field("guide_rotation_per_metre", o.guide_rotation_per_metre,
+          {.unit = "rad/m", .doc = "That allowance per metre of the step", .choices = {}});
+  v.field("guide_rotation_share", o.guide_rotation_share,
+          {.unit = "", .doc = "That share of the odometry's turn", .choices = {}});
 }
 
 void visit(OptionVisitor& v, ObservationOptions& o) {
@@ -672,6 +704,11 @@ void visit(OptionVisitor& v, DualCheckOptions& o) {
   v.field("reconverge_scans", o.reconverge_scans,
           {.unit = "scans",
            .doc = "Unconverged scans before the plan filter is re-initialized",
+           .choices = {}});
+  v.field("restart_when_lost", o.restart_when_lost,
+          {.unit = "",
+           .doc = "Re-initialize a plan filter that declares itself lost where the gridmap "
+                  "filter says, at once",
            .choices = {}});
   v.field("local_reinitialize_sigma", o.local_reinitialize_sigma,
           {.unit = "m",
@@ -873,6 +910,11 @@ void visit(OptionVisitor& v, DualLocalizerOptions& o) {
   v.field("refine_poses", o.refine_poses,
           {.unit = "",
            .doc = "Pairs only from scans whose scan match succeeded on both maps",
+           .choices = {}});
+  v.field("guide_plan_by_gridmap", o.guide_plan_by_gridmap,
+          {.unit = "",
+           .doc = "The plan filter moves by the converged gridmap filter's motion, not the "
+                  "odometry's",
            .choices = {}});
   v.group("gridmap_localization", "Step 1", [&] { visit(v, o.gridmap_localization); });
   v.group("plan_location", "Step 2", [&] { visit(v, o.plan_location); });

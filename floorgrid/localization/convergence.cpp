@@ -1,5 +1,6 @@
 #include "floorgrid/localization/convergence.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <string>
@@ -21,6 +22,9 @@ void validate(const ConvergenceOptions& o) {
   require_option(o.min_converged_scans >= 1, "convergence", "min_converged_scans",
                  o.min_converged_scans, ">= 1");
   require_option(o.max_failed_scans >= 1, "convergence", "max_failed_scans", o.max_failed_scans,
+                 ">= 1");
+  require_option(o.rejoin_window >= 0, "convergence", "rejoin_window", o.rejoin_window, ">= 0");
+  require_option(o.min_rejoin_scans >= 1, "convergence", "min_rejoin_scans", o.min_rejoin_scans,
                  ">= 1");
 }
 
@@ -55,10 +59,17 @@ const ConvergenceCheck& ConvergenceMonitor::update(const PoseEstimate& estimate,
   }
   last_.consecutive_met = last_.criteria_met ? previous.consecutive_met + 1 : 0;
   last_.consecutive_failed = last_.criteria_met ? 0 : previous.consecutive_failed + 1;
-  if (previous.converged)
+  if (previous.converged) {
     last_.converged = last_.consecutive_failed < options_.max_failed_scans;
-  else
-    last_.converged = last_.consecutive_met >= options_.min_converged_scans;
+  } else {
+    // Dropped a few scans ago (at most rejoin_window failing scans since), then meeting every
+    // criterion again: the same hypothesis, trusted again sooner.
+    const int failed = previous.since_converged + 1 - last_.consecutive_met;
+    last_.converged =
+        last_.consecutive_met >= options_.min_converged_scans ||
+        (last_.consecutive_met >= options_.min_rejoin_scans && failed <= options_.rejoin_window);
+  }
+  last_.since_converged = last_.converged ? 0 : std::min(previous.since_converged, 1 << 20) + 1;
   return last_;
 }
 

@@ -20,6 +20,12 @@ struct ConvergenceOptions {
   /// Consecutive scans failing a criterion before a converged filter stops counting as
   /// converged (>= 1; 1: at the first failing scan).
   int max_failed_scans = 1;
+  /// A filter that stopped counting as converged at most this many scans ago (failing every
+  /// one since) counts as converged again after min_rejoin_scans consecutive scans that meet
+  /// every criterion: one bad scan (a person in front of the laser, a long step that spread the
+  /// cloud for a scan) does not make a trusted hypothesis a new guess. 0: never (>= 0).
+  int rejoin_window = 2;
+  int min_rejoin_scans = 1;  ///< (>= 1)
 };
 
 /// Throws InputError naming `convergence.<field>` when an option is out of range.
@@ -36,6 +42,9 @@ struct ConvergenceCheck {
   bool converged = false;      ///< after the hysteresis (ConvergenceMonitor)
   int consecutive_met = 0;     ///< scans in a row meeting every criterion, this one included
   int consecutive_failed = 0;  ///< scans in a row failing one, this one included
+  /// Scans since the filter last counted as converged (0: it does on this scan; large when it
+  /// never has).
+  int since_converged = 1 << 20;
 };
 
 /// The criteria of one scan (consecutive counts and `converged` left 0 / false).

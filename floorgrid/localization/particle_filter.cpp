@@ -213,7 +213,11 @@ void ParticleFilter::restart_global() {
 }
 
 void ParticleFilter::predict(const OdometryMotion& motion_in_world) {
-  predict_particles(particles_, motion_in_world, options_.motion, options_.scale_walk, random_);
+  predict(motion_in_world, options_.motion);
+}
+
+void ParticleFilter::predict(const OdometryMotion& motion_in_world, const MotionNoise& noise) {
+  predict_particles(particles_, motion_in_world, noise, options_.scale_walk, random_);
   if (anchor_) {
     OdometryMotion m = motion_in_world;
     m.trans /= anchor_scale_;

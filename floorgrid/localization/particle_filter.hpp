@@ -144,6 +144,9 @@ class ParticleFilter {
   /// The motion step alone (predict_particles with the filter's noise, scale walk and random
   /// source); also carries the anchor along.
   void predict(const OdometryMotion& motion_in_world);
+  /// The motion step with `noise` instead of the options' odometry noise: a motion known
+  /// better than the odometry's (another filter's poses) is spread by its own noise.
+  void predict(const OdometryMotion& motion_in_world, const MotionNoise& noise);
   /// Moves the whole cloud rigidly so that `from` lands on `to` (each particle p becomes
   /// to * from^-1 * p; the anchor moves along): the correction of an improved proposal, which
   /// centres the predicted particles where a scan match puts the robot before they are weighted

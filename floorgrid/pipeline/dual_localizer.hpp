@@ -173,12 +173,16 @@ struct DualCheckOptions {
   /// one similarity for the whole plan), which also judges the pairs then.
   double consistency_distance = 3.0;
   double consistency_heading = 0.5;  ///< radians
-  /// Consecutive disagreeing scans (the gridmap filter converged) after which the plan filter
-  /// is re-initialized around the registered gridmap pose.
+  /// Consecutive disagreeing scans (the gridmap filter converged; the plan filter converged or
+  /// not) after which the plan filter is re-initialized around the registered gridmap pose.
   int consistency_scans = 10;
   /// Scans a plan filter may stay unconverged (the gridmap filter converged) before it is
   /// re-initialized there as well.
   int reconverge_scans = 40;
+  /// A plan filter that declares itself lost (diverged, recovering) while the gridmap filter
+  /// is converged is re-initialized at once where the gridmap filter says, instead of
+  /// searching the plan by itself (a plan's look-alike rooms and corridors lure it away).
+  bool restart_when_lost = true;
   /// Plan metres and radians: the re-initialized cloud's spread around the pose the local
   /// registration gives...
   double local_reinitialize_sigma = 0.3;
@@ -229,6 +233,10 @@ struct DualLocalizerOptions {
   /// Pairs only from scans whose scan match succeeded on both maps (the refined poses), and
   /// never from a scan whose match is degenerate in either (a corridor, an aisle).
   bool refine_poses = true;
+  /// The plan filter moves by the gridmap filter's motion between scans where that one is
+  /// converged (FilterRunner::guide), not by the odometry: on a sparse log the odometry's noise
+  /// over a metre's step (several degrees) loses a plan filter whose scans see few drawn walls.
+  bool guide_plan_by_gridmap = true;
 
   GridmapLocalizationOptions gridmap_localization;  ///< step 1
   PlanLocationOptions plan_location;                ///< step 2
@@ -314,6 +322,8 @@ struct DualLocalization {
   DivergenceCount grid_divergences;  ///< the gridmap filter's
   std::size_t plan_corrections = 0;  ///< improved-proposal corrections of the plan filter
   std::size_t grid_corrections = 0;  ///< the same for the gridmap filter
+  /// Plan filter steps that moved by the gridmap filter's motion (guide_plan_by_gridmap).
+  std::size_t plan_guided_steps = 0;
   /// Particle-beam evaluations of the tracking passes' measurement updates (both filters).
   std::size_t tracking_evaluations = 0;
   double global_localization_seconds = 0.0;  ///< wall clock

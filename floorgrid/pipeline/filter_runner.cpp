@@ -48,30 +48,63 @@ FilterRunner::FilterRunner(ParticleFilter filter, const ObservationModel& model,
   validate(options_.match);
 }
 
+std::optional<OdometryMotion> FilterRunner::guided_motion(std::size_t from, std::size_t to) const {
+  if (to >= guide_.size() || !guide_[from] || !guide_[to])
+    return std::nullopt;
+  const Pose2 odometry = log_.scans[from].robot_pose.between(log_.scans[to].robot_pose);
+  const Pose2 guided = guide_[from]->between(*guide_[to]);
+  const double step = odometry.translation().norm();
+  if (step < options_.guide_min_translation &&
+      std::abs(odometry.theta) < options_.guide_min_rotation)
+    return std::nullopt;
+  const double off = (guided.translation() - odometry.translation()).norm();
+  const double turned = std::abs(normalize_angle(guided.theta - odometry.theta));
+  if (off > options_.guide_max_translation + options_.guide_translation_share * step ||
+      turned > options_.guide_max_rotation + options_.guide_rotation_per_metre * step +
+                   options_.guide_rotation_share * std::abs(odometry.theta))
+    return std::nullopt;
+  return odometry_motion(*guide_[from], *guide_[to]);
+}
+
 FilterRecord FilterRunner::step(std::size_t i) {
   OdometryMotion motion;
   bool update = true;
+  bool guided = false;  // the motion is the guide's
   if (last_) {
     motion = odometry_motion(log_.scans[*last_].robot_pose, log_.scans[i].robot_pose);
     moved_ += std::abs(motion.trans);
     turned_ += std::abs(motion.rot1) + std::abs(motion.rot2);
     update = moved_ >= options_.update_min_translation || turned_ >= options_.update_min_rotation;
+    if (const std::optional<OdometryMotion> g = guided_motion(*last_, i)) {
+      motion = *g;
+      guided = true;
+    }
   }
   last_ = i;
   FilterRecord record;
   if (!filter_.initialized())
     return record;
+  guided_steps_ += guided;
+  const auto predict = [&] {
+    if (guided)
+      filter_.predict(motion, options_.guided_noise);
+    else
+      filter_.predict(motion);
+  };
   std::optional<ScanMatch> proposal;  // the improved proposal's match of this scan
   if (update) {
     moved_ = turned_ = 0.0;
     const bool tracking = filter_.converged() && filter_.state() == FilterState::tracking;
     FilterStatus status;
     if (options_.improved_proposal && tracking) {
-      filter_.predict(motion);
+      predict();
       const ScanObservation points = make_observation(log_.scans[i], options_.match_observation);
       proposal =
           apply_proposal(filter_, walls_, points, options_.match, caster_, options_.beam_tolerance);
       corrections_ += proposal->ok() || proposal->failure == ScanMatchFailure::degenerate;
+      status = filter_.step(OdometryMotion{}, observations_[i], model_, options_.threads);
+    } else if (guided) {
+      predict();
       status = filter_.step(OdometryMotion{}, observations_[i], model_, options_.threads);
     } else {
       status = filter_.step(motion, observations_[i], model_, options_.threads);
@@ -80,7 +113,7 @@ FilterRecord FilterRunner::step(std::size_t i) {
     record.updated = true;
     record.diverged = status.state == FilterState::diverged;
   } else {
-    filter_.predict(motion);
+    predict();
   }
   const FilterStatus& status = filter_.status();
   record.state = filter_.state();

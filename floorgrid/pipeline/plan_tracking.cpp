@@ -1,5 +1,6 @@
 #include "floorgrid/pipeline/plan_tracking.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "floorgrid/pipeline/dual_pairs.hpp"
@@ -26,18 +27,39 @@ std::optional<PlanRestart> DualCheck::judge(std::size_t scan, ScanRecord& record
                            : record.consistent;
   if (plan.converged && record.consistent && plan.match.ok() && grid.match.ok())
     local_.add(scan, grid.match.pose, plan.match.pose);
-  disagreeing_ = plan.converged && !agrees ? disagreeing_ + 1 : 0;
+  // Converged or not: a filter that flickers between converging in a wrong place and doubting
+  // it is as far off as one that stays converged there; and one that hovers about the
+  // tolerance, agreeing now and then, as one that disagrees throughout (an agreeing scan only
+  // takes one disagreeing scan back). One that agrees but cannot converge (a place the plan
+  // draws few of the walls the laser sees) is left to track.
+  disagreeing_ = agrees ? std::max(0, disagreeing_ - 1) : disagreeing_ + 1;
   unconverged_ = plan.converged ? 0 : unconverged_ + 1;
-  if (disagreeing_ < options_.consistency_scans && unconverged_ < options_.reconverge_scans)
+  // The plan filter declared itself lost: its own recovery would search the whole plan, where
+  // a drawing of walls has look-alike places; the gridmap filter knows where the robot is.
+  const bool lost =
+      options_.restart_when_lost && (plan.diverged || plan.state == FilterState::recovering);
+  if (!lost && disagreeing_ < options_.consistency_scans &&
+      unconverged_ < options_.reconverge_scans)
     return std::nullopt;
   PlanRestart restart{
-      .reason = disagreeing_ >= options_.consistency_scans ? "inconsistent" : "unconverged",
+      .reason = lost                                         ? "lost"
+                : disagreeing_ >= options_.consistency_scans ? "inconsistent"
+                                                             : "unconverged",
       .start = plan_start(
           expected, near ? options_.local_reinitialize_sigma : options_.reinitialize_sigma,
           near ? options_.local_reinitialize_heading_sigma : options_.reinitialize_heading_sigma,
           scale_, 0.0)};
   disagreeing_ = unconverged_ = 0;
   return restart;
+}
+
+std::vector<std::optional<Pose2>> gridmap_guide(const DualLocalization& result) {
+  std::vector<std::optional<Pose2>> poses(result.scans.size());
+  for (std::size_t i = 0; i < result.scans.size(); ++i) {
+    if (result.scans[i].grid.converged)
+      poses[i] = result.scans[i].grid.pose;
+  }
+  return poses;
 }
 
 void track_plan(const DualMaps& maps, const RobotLog& log, const DualLocalizerOptions& options,
@@ -51,6 +73,8 @@ void track_plan(const DualMaps& maps, const RobotLog& log, const DualLocalizerOp
                              maps.plan());
   FilterRunner runner(std::move(filter), maps.plan_model().model(), maps.plan_walls(), log,
                       maps.plan_observations(), options.plan.runner, maps.plan_rays());
+  if (options.guide_plan_by_gridmap)
+    runner.guide(gridmap_guide(result));
   DualCheck check(options.dual_check, location.registration, location.scale);
   const std::size_t n = log.scans.size();
   std::size_t usable = 0;
@@ -65,7 +89,8 @@ void track_plan(const DualMaps& maps, const RobotLog& log, const DualLocalizerOp
     }
     if (record.grid.converged) {
       if (const std::optional<PlanRestart> restart = check.judge(i, record)) {
-        count_divergence(result.plan_divergences, restart->reason);
+        if (restart->reason != "lost")  // a divergence the filter counted itself
+          count_divergence(result.plan_divergences, restart->reason);
         runner.filter() = ParticleFilter(options.plan.filter, ++seed);
         runner.filter().initialize_tracking(restart->start, maps.plan());
         record.plan_reinitialized = true;
@@ -75,6 +100,7 @@ void track_plan(const DualMaps& maps, const RobotLog& log, const DualLocalizerOp
     report_progress(progress, "plan", i + 1, n, record.plan.converged, usable);
   }
   result.plan_corrections = runner.corrections();
+  result.plan_guided_steps = runner.guided_steps();
   result.tracking_evaluations += runner.evaluations();
 }
 

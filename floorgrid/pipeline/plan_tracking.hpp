@@ -2,6 +2,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "floorgrid/pipeline/plan_location.hpp"
 
@@ -31,9 +32,13 @@ class DualCheck {
   const PlanRegistration& global_;
   double scale_;
   LocalRegistration local_;
-  int disagreeing_ = 0;  // consecutive scans the converged plan filter disagreed
+  int disagreeing_ = 0;  // consecutive scans the plan filter disagreed
   int unconverged_ = 0;  // consecutive scans the plan filter was not converged
 };
+
+/// The gridmap filter's pose on every scan where it was converged (none elsewhere): the plan
+/// filter's motion between two such scans (FilterRunner::guide).
+std::vector<std::optional<Pose2>> gridmap_guide(const DualLocalization& result);
 
 /// Step 4 of localize_dual: the plan filter tracks the log at `scale` from the plan's start,
 /// checked against the gridmap filter scan by scan (DualCheck). Fills every ScanRecord::plan,

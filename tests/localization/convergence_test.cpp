@@ -57,8 +57,10 @@ TEST(Convergence, ScaleIsCheckedOnlyWhenTheParticlesCarryOne) {
 }
 
 TEST(Convergence, HysteresisNeedsMinConvergedScansInARow) {
-  // Default: 3 passing scans in a row to converge; the first failing scan ends it.
-  ConvergenceMonitor m;
+  // 3 passing scans in a row to converge; the first failing scan ends it (no rejoining).
+  ConvergenceOptions o;
+  o.rejoin_window = 0;
+  ConvergenceMonitor m(o);
   const PoseEstimate good = good_estimate();
   const bool pass_pattern[] = {true, true, false, true, true, true, true, false, true, true, true};
   const bool expected[] = {false, false, false, false, false, true,
@@ -78,12 +80,31 @@ TEST(Convergence, HysteresisToleratesMaxFailedScansMinusOne) {
   ConvergenceOptions o;
   o.min_converged_scans = 2;
   o.max_failed_scans = 2;
+  o.rejoin_window = 0;
   ConvergenceMonitor m(o);
   const PoseEstimate good = good_estimate();
   const double beam[] = {0.8, 0.8, 0.1, 0.8, 0.1, 0.1, 0.8, 0.8};
   const bool expected[] = {false, true, true, true, true, false, false, true};
   for (std::size_t i = 0; i < std::size(beam); ++i)
     EXPECT_EQ(m.update(good, beam[i], false).converged, expected[i]) << "scan " << i;
+}
+
+TEST(Convergence, AFilterThatDroppedForAScanOrTwoRejoinsAfterOneGoodScan) {
+  // Defaults: 3 passing scans to converge; after at most rejoin_window (2) failing scans, one
+  // passing scan rejoins; after more, or after a reset, it takes 3 again.
+  ConvergenceMonitor m;
+  const PoseEstimate good = good_estimate();
+  const bool pass_pattern[] = {true, true,  true,  false, true, false, false,
+                               true, false, false, false, true, true,  true};
+  const bool expected[] = {false, false, true,  false, true,  false, false,
+                           true,  false, false, false, false, false, true};
+  for (std::size_t i = 0; i < std::size(pass_pattern); ++i)
+    EXPECT_EQ(m.update(good, pass_pattern[i] ? 0.8 : 0.1, false).converged, expected[i])
+        << "scan " << i;
+  // A reset (a re-initialized or diverged filter) forgets the hypothesis it had.
+  m.update(good, 0.1, false);
+  m.reset();
+  EXPECT_FALSE(m.update(good, 0.8, false).converged);
 }
 
 TEST(Convergence, RejectsBadOptions) {
@@ -96,6 +117,12 @@ TEST(Convergence, RejectsBadOptions) {
   o = {};
   o.max_position_std = -1;
   test::expect_input_error([&] { validate(o); }, {"convergence.max_position_std", "-1"});
+  o = {};
+  o.rejoin_window = -1;
+  test::expect_input_error([&] { validate(o); }, {"convergence.rejoin_window", ">= 0"});
+  o = {};
+  o.min_rejoin_scans = 0;
+  test::expect_input_error([&] { validate(o); }, {"convergence.min_rejoin_scans", ">= 1"});
 }
 
 TEST(ConvergenceDivergence, BadScansInARowMeanDiverged) {

@@ -95,5 +95,68 @@ TEST(FilterRunner, TracksARunAndRefinesEachPoseOntoTheWalls) {
   EXPECT_GT(runner.evaluations(), 0u);
 }
 
+/// A run of 1 m steps across the room, and its log with odometry that turns 4 degrees too far
+/// on every step (the log's poses drift; the scans are taken at the true poses).
+struct DriftingRun {
+  std::vector<Pose2> truth;
+  RobotLog log;
+};
+
+DriftingRun drifting_run() {
+  DriftingRun run;
+  for (int k = 0; k < 10; ++k)
+    run.truth.push_back({1.5 + 0.9 * k, 2.0 + 0.4 * k, 0.42});
+  run.log = test::log_along(room().walls, run.truth);
+  Pose2 odometry = run.truth[0];
+  for (std::size_t i = 1; i < run.truth.size(); ++i) {
+    const Pose2 step = run.truth[i - 1].between(run.truth[i]);
+    odometry = odometry.compose(Pose2{step.x, step.y, step.theta + 0.07});
+    run.log.scans[i].robot_pose = run.log.scans[i].laser_pose = odometry;
+  }
+  return run;
+}
+
+TEST(FilterRunner, AGuidedFilterMovesByTheGuideNotTheDriftingOdometry) {
+  const DriftingRun run = drifting_run();
+  const std::vector<ScanObservation> obs = observations(run.log);
+  // Scans of a blank map: the filter learns nothing from them, only the motion moves it.
+  const LikelihoodFieldModel blank{OccupancyGrid(room().grid.geometry())};
+  double guided_error = 0.0, odometry_error = 0.0;
+  for (const bool guided : {true, false}) {
+    ParticleFilter filter(ParticleFilterOptions{}, 1);
+    filter.initialize_tracking(around(run.truth[0], 0.02, 0.01));
+    FilterRunnerOptions options;
+    options.improved_proposal = options.refine = false;
+    FilterRunner runner(std::move(filter), blank, room().field, run.log, obs, options);
+    if (guided)
+      runner.guide({run.truth.begin(), run.truth.end()});
+    FilterRecord last;
+    for (std::size_t i = 0; i < run.log.scans.size(); ++i)
+      last = runner.step(i);
+    const double error = (last.pose.translation() - run.truth.back().translation()).norm();
+    (guided ? guided_error : odometry_error) = error;
+    EXPECT_EQ(runner.guided_steps(), guided ? run.log.scans.size() - 1 : 0u);
+  }
+  // 4 degrees a step over 9 steps of a metre: the odometry ends metres off, the guide within
+  // its noise (4.5 cm per metre).
+  EXPECT_GT(odometry_error, 1.5);
+  EXPECT_LT(guided_error, 0.3);
+}
+
+TEST(FilterRunner, AGuideThatJumpsAwayFromTheOdometryIsNotFollowed) {
+  const DriftingRun run = drifting_run();
+  const std::vector<ScanObservation> obs = observations(run.log);
+  std::vector<std::optional<Pose2>> guide(run.truth.begin(), run.truth.end());
+  guide[4] = guide[4]->compose({2.0, 0.0, 0.0});  // 2 m off: both steps through it are refused
+  guide[7].reset();                               // unknown: both steps through it too
+  ParticleFilter filter(ParticleFilterOptions{}, 1);
+  filter.initialize_tracking(around(run.truth[0], 0.02, 0.01));
+  FilterRunner runner(std::move(filter), room().model, room().field, run.log, obs, {});
+  runner.guide(guide);
+  for (std::size_t i = 0; i < run.log.scans.size(); ++i)
+    runner.step(i);
+  EXPECT_EQ(runner.guided_steps(), run.log.scans.size() - 1 - 4);
+}
+
 }  // namespace
 }  // namespace floorgrid
