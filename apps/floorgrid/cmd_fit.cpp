@@ -53,7 +53,7 @@ void add_fit_command(CLI::App& root) {
   auto* cmd = root.add_subcommand("fit", "Fit a mapping model to reference pairs");
   struct Args {
     std::string pairs, out;
-    int cv = 0;
+    int cv = 5;
     std::string cv_kind = to_string(CrossValidationOptions{}.kind);
     double unit = 1.0;
     MappingOptions options;
@@ -71,8 +71,11 @@ void add_fit_command(CLI::App& root) {
   cmd->add_option("--model", args->options.model, "the model, one of:" + models)
       ->capture_default_str();
   cmd->add_option("--out", args->out, "model file to write (JSON)")->required();
-  cmd->add_option("--cv", args->cv, "also report the k-fold cross-validated error (0: no)")
-      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--cv", args->cv,
+                  "k-fold cross-validated error, and (blocked folds) the model's std_m fitted "
+                  "on the held-out errors (0: neither; std_m then empty)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   cmd->add_option("--cv-kind", args->cv_kind,
                   "folds of whole spatial blocks (blocked: the error away from the pairs) or of "
                   "pairs dealt at random (random); also how auto compares its candidates")
@@ -150,6 +153,9 @@ void add_fit_command(CLI::App& root) {
       const CrossValidationResult r =
           with_file(args->pairs, [&] { return cross_validate(args->options, pairs, folds); });
       model->set_cv_error(r.mean_error_m, r.method);
+      // auto has its chosen model's already; the others' from their held-out errors.
+      if (model->name() != "auto")
+        model->set_error_model(fit_error_model(r.held_out, args->options.uncertainty));
     }
     io::write_model(*model, args->out);
     const FitSummary& f = model->summary();
@@ -177,6 +183,16 @@ void add_fit_command(CLI::App& root) {
       fmt::print("cv error  {:.4f} m ({:.4g} units, {}-fold)\n", *f.cv_error_m,
                  *f.cv_error_m / args->unit,
                  args->cv >= 2 ? args->cv : args->options.auto_select.cv.folds);
+    }
+    if (const std::optional<ErrorModel>& u = model->error_model()) {
+      fmt::print(
+          "std_m     sqrt({:.4f}^2 + ({:.4f} d)^2) m, d: metres from the nearest pair ({} "
+          "held-out pairs)\n",
+          u->base_std_m, u->growth, u->residuals);
+    } else {
+      fmt::print("std_m     none ({})\n", args->cv >= 2 && cv.kind == CrossValidationKind::blocked
+                                              ? "too few held-out pairs"
+                                              : "needs blocked cross-validation, --cv >= 2");
     }
     fmt::print("wrote     {}\n", args->out);
   });

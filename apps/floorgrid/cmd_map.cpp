@@ -46,6 +46,7 @@ void add_map_command(CLI::App& root) {
   struct Args {
     std::string model, points, out;
     bool inverse = false;
+    std::optional<double> max_error;
     std::vector<std::string> values;
   };
   auto args = std::make_shared<Args>();
@@ -53,6 +54,10 @@ void add_map_command(CLI::App& root) {
   cmd->add_flag("--inverse", args->inverse, "map grid to plan instead of plan to grid");
   cmd->add_option("--points", args->points, "CSV of points: header x,y or x,y,theta");
   cmd->add_option("--out", args->out, "CSV to write with --points");
+  cmd->add_option("--max-error", args->max_error,
+                  fmt::format("metres: a point whose 95% error bound (2 std_m) exceeds this is "
+                              "flagged uncertain, not ok (default: the model file's, else {:g})",
+                              MappingCommonOptions{}.max_error));
   cmd->add_option("POINTS", args->values, "points x,y or poses x,y,theta (radians)");
   cmd->callback([args] {
     if (args->points.empty() == args->values.empty()) {
@@ -63,6 +68,14 @@ void add_map_command(CLI::App& root) {
       throw InputError("--points needs --out OUT.csv", {}, 0, "--out");
     }
     const auto model = io::read_model(args->model);
+    if (args->max_error) {
+      if (!(*args->max_error > 0.0 && *args->max_error <= kMaxCoordinate)) {
+        throw InputError(
+            fmt::format("must be a distance in (0, 1e7] metres (got {})", *args->max_error), {}, 0,
+            "--max-error");
+      }
+      model->set_max_error(*args->max_error);
+    }
     // Coordinates beyond kMaxCoordinate metres are not physical (their squared distances
     // overflow): refused, in the model's units.
     const double max_abs = kMaxCoordinate / model->unit();

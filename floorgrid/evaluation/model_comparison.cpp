@@ -48,6 +48,7 @@ std::vector<ModelReport> compare_models(const ReferencePairs& pairs, const Evalu
         cv.folds = options.cv_folds;
         const CrossValidationResult r = cross_validate(mapping, pairs, cv);
         model->set_cv_error(r.mean_error_m, r.method);
+        model->set_error_model(fit_error_model(r.held_out, mapping.uncertainty));
         report.summary.cv_error_m = r.mean_error_m;
         report.summary.cv = r.method;
         cross_validated[name] = r;
@@ -63,6 +64,7 @@ std::vector<ModelReport> compare_models(const ReferencePairs& pairs, const Evalu
       const std::vector<double> errors = model_errors(*report.model, domain.points_in_plan, *truth);
       report.errors = error_statistics(errors);
       report.histogram = error_histogram(errors);
+      report.calibration = calibration(*report.model, domain.points_in_plan, errors);
     }
     report.back_and_forth =
         back_and_forth(*report.model, domain.points_in_plan, options.back_and_forth_rounds,

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "floorgrid/evaluation/calibration.hpp"
 #include "floorgrid/evaluation/domain.hpp"
 #include "floorgrid/evaluation/model_evaluation.hpp"
 #include "floorgrid/mapping/mapping_factory.hpp"
@@ -20,8 +21,10 @@ struct ModelReport {
   FitSummary summary;                     ///< the fit
   std::optional<ErrorStatistics> errors;  ///< against the ground truth over the domain
   std::vector<std::size_t> histogram;     ///< 0.05 m bins up to "1.0 m and more"
-  BackAndForth back_and_forth;            ///< drift of points mapped there and back
-  double evaluate_seconds = 0.0;          ///< time of the judging
+  /// Its std_m against the true errors over the domain (with a truth and an error model).
+  std::optional<Calibration> calibration;
+  BackAndForth back_and_forth;    ///< drift of points mapped there and back
+  double evaluate_seconds = 0.0;  ///< time of the judging
 };
 
 /// Which models are fitted and how they are judged.

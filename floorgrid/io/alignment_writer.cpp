@@ -35,6 +35,13 @@ json model_json(const ModelAlignment& m) {
     j["max_error_m"] = number(r.errors->max);
     j["error_histogram"] = r.histogram;
   }
+  if (r.calibration) {
+    // Extension: how often the true error lies within std_m and 2 std_m (ErrorModel).
+    j["calibration"] = {{"within_1sigma", number(r.calibration->within_1sigma)},
+                        {"within_2sigma", number(r.calibration->within_2sigma)},
+                        {"median_std_m", number(r.calibration->median_std_m)},
+                        {"points", r.calibration->points}};
+  }
   j["fit_seconds"] = number(r.summary.seconds);
   j["cv_error_m"] = r.summary.cv_error_m ? number(*r.summary.cv_error_m) : json(nullptr);
   // Which cross-validation cv_error_m is: blocked (away from the pairs) or random.
@@ -42,6 +49,12 @@ json model_json(const ModelAlignment& m) {
   j["cv_kind"] = cv ? json(cv->kind) : json(nullptr);
   j["cv_folds"] = cv ? json(cv->folds) : json(nullptr);
   j["cv_block_m"] = cv && cv->kind == "blocked" ? number(cv->block_size) : json(nullptr);
+  if (const std::optional<ErrorModel>& u = r.model->error_model()) {
+    // Extension: the model's std_m = sqrt(base_std_m^2 + (growth d)^2), d from the nearest pair.
+    j["uncertainty"] = {{"base_std_m", number(u->base_std_m)},
+                        {"growth", number(u->growth)},
+                        {"residuals", u->residuals}};
+  }
   j["rms_m"] = number(r.summary.rms_m);
   j["pairs_used"] = r.summary.pairs_used;
   if (r.summary.inliers)

@@ -49,6 +49,23 @@ void visit(OptionVisitor& v, RpropOptions& o) {
   // lower and upper are not options: the tuning sets them from its own bounds.
 }
 
+void visit(OptionVisitor& v, ErrorModelOptions& o) {
+  v.field("min_residuals", o.min_residuals,
+          {.unit = "", .doc = "Held-out pairs needed at least (fewer: no std_m)", .choices = {}});
+  v.field("variance_scale", o.variance_scale,
+          {.unit = "",
+           .doc = "Calibration factor on the variance fitted to the held-out errors",
+           .choices = {}});
+  v.field("local_radius", o.local_radius,
+          {.unit = "m",
+           .doc = "Held-out errors this near a point scale its std (0: no local part)",
+           .choices = {}});
+  v.field("local_prior", o.local_prior,
+          {.unit = "",
+           .doc = "Weight of the global fit against the nearby held-out errors",
+           .choices = {}});
+}
+
 void visit(OptionVisitor& v, CrossValidationOptions& o) {
   v.field("folds", o.folds, {.unit = "", .doc = "k of k-fold, >= 2", .choices = {}});
   v.field("max_pairs", o.max_pairs,
@@ -414,6 +431,10 @@ void visit(OptionVisitor& v, MappingCommonOptions& o) {
           {.unit = "m",
            .doc = "A point farther than this from every pair is flagged extrapolated",
            .choices = {}});
+  v.field("max_error", o.max_error,
+          {.unit = "m",
+           .doc = "A point whose 95% error bound (2 std_m) exceeds this is flagged uncertain",
+           .choices = {}});
   v.group("reduction", "Pair budget of models that reduce their pairs",
           [&] { visit(v, o.reduction); });
   v.field("support_budget", o.support_budget,
@@ -600,6 +621,8 @@ void visit(OptionVisitor& v, MappingOptions& o) {
   v.group("gp", "Gp and gpgt", [&] { visit(v, o.gp); });
   v.group("tps", "Tps", [&] { visit(v, o.tps); });
   v.group("auto_select", "Auto", [&] { visit(v, o.auto_select); });
+  v.group("uncertainty", "Every model's std_m, fitted on its blocked cross-validation",
+          [&] { visit(v, o.uncertainty); });
 }
 
 void visit(OptionVisitor& v, OutlierScanOptions& o) {

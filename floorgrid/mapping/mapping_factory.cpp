@@ -5,6 +5,7 @@
 namespace floorgrid {
 
 std::unique_ptr<PointMapping> make_mapping(const MappingOptions& options) {
+  validate(options.uncertainty);
   if (const ModelEntry* entry = find_model(options.model))
     return entry->make(options);
   std::string known;

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "floorgrid/geometry/ransac.hpp"
+#include "floorgrid/mapping/error_model.hpp"
 #include "floorgrid/mapping/gaussian_process.hpp"
 #include "floorgrid/mapping/linear_combination.hpp"
 #include "floorgrid/mapping/local_transforms.hpp"
@@ -32,6 +33,7 @@ struct MappingOptions {
   GaussianProcessOptions gp;        ///< gp and gpgt
   ThinPlateSplineModelOptions tps;  ///< tps
   AutoOptions auto_select;          ///< auto: candidates and cross-validation
+  ErrorModelOptions uncertainty;    ///< every model's std_m, from its blocked cross-validation
 };
 
 /// A new, unfitted model (model_registry's entry for `options.model`). InputError (field "model")

@@ -209,6 +209,32 @@ CrossValidationRecord cv_record(const Value& cv, const std::string& where) {
   return record;
 }
 
+/// The error model of `uncertainty` (absent from files of earlier builds: no std_m then).
+ErrorModel error_model_of(const Value& u, const std::string& where) {
+  const std::string p = "uncertainty.";
+  ErrorModel model;
+  model.base_std_m =
+      number(member(u, "base_std_m", where, p), where, p + "base_std_m", 0.0, kMaxCoordinate);
+  model.growth = number(member(u, "growth", where, p), where, p + "growth", 0.0, 1e6);
+  model.residuals = summary_count(u, "residuals", where, p);
+  if (const Value* reach = optional_member(u, "max_nearest_m"))
+    model.max_nearest_m = number(*reach, where, p + "max_nearest_m", 0.0, kMaxCoordinate);
+  if (const Value* local = optional_member(u, "local")) {
+    const std::string l = p + "local.";
+    model.local_radius_m =
+        number(member(*local, "radius_m", where, l), where, l + "radius_m", 0.0, 1e3);
+    model.local_prior = number(member(*local, "prior", where, l), where, l + "prior", 1e-9, 1e6);
+    model.local_points = points(member(*local, "points", where, l), where, l + "points");
+    model.local_ratios = vector(member(*local, "ratios", where, l), where, l + "ratios");
+    if (model.local_ratios.size() != model.local_points.cols())
+      throw InputError("points and ratios differ in number", where, 0, l + "ratios");
+    if ((model.local_ratios.array() < 0.0).any())
+      throw InputError("must be >= 0", where, 0, l + "ratios");
+    model.index_local_points();
+  }
+  return model;
+}
+
 }  // namespace
 
 Value PointMapping::to_model_file() const {
@@ -247,6 +273,7 @@ Value PointMapping::to_model_file() const {
   }
   file["fit"] = std::move(fit);
   file["options"] = {{"extrapolation_distance_m", common_.extrapolation_distance},
+                     {"max_error_m", common_.max_error},
                      {"support_budget", common_.support_budget},
                      {"inverse_tolerance", common_.inverse_tolerance},
                      {"inverse_max_iterations", common_.inverse_max_iterations},
@@ -257,6 +284,30 @@ Value PointMapping::to_model_file() const {
       {"weights",
        vector(support_.has_weights() ? support_.weights : Eigen::VectorXd::Ones(support_.size()))}};
   file["parameters"] = parameters();
+  if (error_model_) {
+    file["uncertainty"] = {
+        {"std_m",
+         "sqrt(f * (base_std_m^2 + (growth * d)^2)), d: metres from the nearest pair, "
+         "f: the local factor (1 without local)"},
+        {"meaning",
+         "root mean square length of the 2D error: |error| <= std_m about 63%, "
+         "<= 2 std_m about 95% of points"},
+        {"source", "maximum likelihood on spatially blocked cross-validation residuals"},
+        {"base_std_m", error_model_->base_std_m},
+        {"growth", error_model_->growth},
+        {"residuals", error_model_->residuals},
+        {"max_nearest_m", error_model_->max_nearest_m}};
+    if (error_model_->local_radius_m > 0.0) {
+      file["uncertainty"]["local"] = {
+          {"factor",
+           "Gaussian-weighted mean of the held-out pairs' ratios within 3 radius_m, "
+           "with the global fit counted as prior pairs of ratio 1"},
+          {"radius_m", error_model_->local_radius_m},
+          {"prior", error_model_->local_prior},
+          {"points", points(error_model_->local_points)},
+          {"ratios", vector(error_model_->local_ratios)}};
+    }
+  }
   return file;
 }
 
@@ -265,6 +316,9 @@ void PointMapping::from_model_file(const Value& file, const std::string& where) 
   common_.extrapolation_distance =
       number(member(options, "extrapolation_distance_m", where, "options."), where,
              "options.extrapolation_distance_m", 0.0, kMaxCoordinate);
+  if (const Value* max_error = optional_member(options, "max_error_m")) {
+    common_.max_error = number(*max_error, where, "options.max_error_m", 1e-9, kMaxCoordinate);
+  }
   unit_ = number(member(file, "unit", where), where, "unit", kMinUnit, kMaxUnit);
   const Value& support = member(file, "support", where);
   ReferencePairs pairs;
@@ -298,6 +352,9 @@ void PointMapping::from_model_file(const Value& file, const std::string& where) 
   summary_.pairs_used = summary_count(counts, "used", where, "pairs.");
   summary_.pairs_merged = summary_count(counts, "merged", where, "pairs.");
   load_parameters(member(file, "parameters", where), where);
+  error_model_.reset();
+  if (const Value* uncertainty = optional_member(file, "uncertainty"))
+    error_model_ = error_model_of(*uncertainty, where);
   fitted_ = true;
 }
 

@@ -7,6 +7,7 @@
 #include "floorgrid/core/error.hpp"
 #include "floorgrid/core/statistics.hpp"
 #include "floorgrid/core/validation.hpp"
+#include "floorgrid/geometry/point_index.hpp"
 #include "floorgrid/mapping/mapping_factory.hpp"
 #include "floorgrid/mapping/model_file.hpp"
 
@@ -64,12 +65,16 @@ CrossValidationResult cross_validate(const MappingOptions& options, const Refere
       ++result.failed_folds;
       continue;
     }
+    const PointIndex2D training(select_pairs(pairs, train).points_in_plan);
     double sum = 0.0;
     for (const Eigen::Index i : test) {
       const double e =
           (model->forward(pairs.points_in_plan.col(i)) - pairs.points_in_grid.col(i)).norm();
       errors.push_back(std::isfinite(e) ? e : std::numeric_limits<double>::infinity());
       sum += errors.back();
+      if (std::isfinite(e) && cv.kind == CrossValidationKind::blocked)
+        result.held_out.push_back({e, training.nearest(pairs.points_in_plan.col(i)).distance,
+                                   pairs.points_in_plan.col(i)});
     }
     result.fold_errors.push_back(sum / static_cast<double>(test.size()));
   }
@@ -129,6 +134,7 @@ void AutoMapping::fit_model(const ReferencePairs& pairs, FitSummary& summary) {
   std::string best;
   double best_error = std::numeric_limits<double>::infinity();
   CrossValidationRecord best_method;
+  std::vector<HeldOutResidual> best_held_out;
   Value table = Value::object();
   for (const auto& name : options_->auto_select.candidates) {
     MappingOptions candidate = *options_;
@@ -146,6 +152,7 @@ void AutoMapping::fit_model(const ReferencePairs& pairs, FitSummary& summary) {
       best_error = cv.mean_error_m;
       best = name;
       best_method = cv.method;
+      best_held_out = cv.held_out;
     }
   }
   if (best.empty())
@@ -155,6 +162,9 @@ void AutoMapping::fit_model(const ReferencePairs& pairs, FitSummary& summary) {
   chosen_ = make_mapping(chosen);
   const FitSummary inner = chosen_->fit(pairs);
   chosen_->set_cv_error(best_error, best_method);
+  // The chosen model's std_m, from its own held-out errors.
+  chosen_->set_error_model(fit_error_model(best_held_out, options_->uncertainty));
+  set_error_model(chosen_->error_model());
   summary.rms_m = inner.rms_m;
   summary.inliers = inner.inliers;
   summary.pairs_used = inner.pairs_used;

@@ -43,6 +43,10 @@ struct CrossValidationResult {
   std::size_t pairs = 0;            ///< pairs cross-validated (after binning)
   std::size_t failed_folds = 0;     ///< folds whose training set the model refused
   CrossValidationRecord method;     ///< kind, folds and block size used
+  /// Blocked folds: every held-out pair's error and distance to its fold's training pairs
+  /// (finite errors), for the model's error model (fit_error_model); empty for random folds,
+  /// whose held-out pairs have near-copies in training.
+  std::vector<HeldOutResidual> held_out;
 };
 
 /// k-fold cross-validation of the model `options` names: pairs are merged, binned to

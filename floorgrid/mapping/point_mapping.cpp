@@ -12,6 +12,8 @@ namespace floorgrid {
 
 std::string to_string(MapFlag flag) {
   switch (flag) {
+    case MapFlag::uncertain:
+      return "uncertain";
     case MapFlag::extrapolated:
       return "extrapolated";
     case MapFlag::outside_hull:
@@ -29,6 +31,8 @@ void validate(const MappingCommonOptions& options) {
       options.extrapolation_distance >= 0.0 && options.extrapolation_distance <= kMaxCoordinate,
       "mapping.extrapolation_distance", options.extrapolation_distance,
       "a distance in [0, 1e7] metres");
+  require_option(options.max_error > 0.0 && options.max_error <= kMaxCoordinate,
+                 "mapping.max_error", options.max_error, "a distance in (0, 1e7] metres");
   require_option(options.reduction.budget >= 3, "mapping.reduction.budget",
                  options.reduction.budget, ">= 3");
   require_option(options.support_budget >= 3, "mapping.support_budget", options.support_budget,
@@ -79,6 +83,7 @@ FitSummary PointMapping::fit(const ReferencePairs& given) {
     pairs = reduce_pairs(pairs, reduction, &summary.reduction);
   }
   summary.pairs_used = static_cast<std::size_t>(pairs.size());
+  error_model_.reset();  // a new fit: the error model of the last one no longer holds
   build_support(pairs);
   fit_model(pairs, summary);
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -168,6 +173,31 @@ std::optional<double> PointMapping::predictive_std(const Eigen::Vector2d&) const
   return std::nullopt;
 }
 
+std::optional<double> PointMapping::error_std(const Eigen::Vector2d& point_in_plan) const {
+  if (!error_model_)
+    return std::nullopt;
+  return error_model_->std_at(point_in_plan, nearest_pair_in_plan(point_in_plan));
+}
+
+void PointMapping::set_max_error(double metres) {
+  MappingCommonOptions common = common_;
+  common.max_error = metres;
+  validate(common);
+  common_.max_error = metres;
+}
+
+MapFlag PointMapping::flag_of(bool inside_hull, double nearest_pair_m,
+                              const std::optional<double>& std_m) const {
+  if (!inside_hull)
+    return MapFlag::outside_hull;
+  if (nearest_pair_m > common_.extrapolation_distance)
+    return MapFlag::extrapolated;
+  // 2 std_m: the 95% bound of the error's length (ErrorModel).
+  if (std_m && 2.0 * *std_m > common_.max_error)
+    return MapFlag::uncertain;
+  return MapFlag::ok;
+}
+
 Pose2 PointMapping::forward_pose(const Pose2& pose) const {
   const Eigen::Vector2d p = forward(pose.translation());
   const Eigen::Vector2d heading =
@@ -203,11 +233,10 @@ bool PointMapping::inside_grid_hull(const Eigen::Vector2d& p) const {
 MappedPoint PointMapping::map_forward(const Eigen::Vector2d& p) const {
   MappedPoint m;
   m.point = forward(p);
-  m.std_m = predictive_std(p);
   m.nearest_pair_m = nearest_pair_in_plan(p);
-  m.flag = !inside_plan_hull(p)                                ? MapFlag::outside_hull
-           : m.nearest_pair_m > common_.extrapolation_distance ? MapFlag::extrapolated
-                                                               : MapFlag::ok;
+  if (error_model_)
+    m.std_m = error_model_->std_at(p, m.nearest_pair_m);
+  m.flag = flag_of(inside_plan_hull(p), m.nearest_pair_m, m.std_m);
   if (!m.point.allFinite())
     m.flag = MapFlag::not_invertible;
   return m;
@@ -223,10 +252,9 @@ MappedPoint PointMapping::map_inverse(const Eigen::Vector2d& g) const {
     return m;
   }
   m.point = inv.point;
-  m.std_m = predictive_std(inv.point);
-  m.flag = !inside_grid_hull(g)                                ? MapFlag::outside_hull
-           : m.nearest_pair_m > common_.extrapolation_distance ? MapFlag::extrapolated
-                                                               : MapFlag::ok;
+  // The error model's distances are the plan's: the plan point found is where it is judged.
+  m.std_m = error_std(inv.point);
+  m.flag = flag_of(inside_grid_hull(g), m.nearest_pair_m, m.std_m);
   return m;
 }
 

@@ -13,13 +13,16 @@
 #include "floorgrid/geometry/point_index.hpp"
 #include "floorgrid/geometry/pose2.hpp"
 #include "floorgrid/geometry/reference_pairs.hpp"
+#include "floorgrid/mapping/error_model.hpp"
 #include "floorgrid/mapping/pair_preparation.hpp"
 
 namespace floorgrid {
 
-/// How far a mapped point may be trusted (SPEC `map` CSV `flag`): the first that applies.
+/// How far a mapped point may be trusted (SPEC `map` CSV `flag`): the first that applies of
+/// not_invertible, outside_hull, extrapolated, uncertain, ok.
 enum class MapFlag {
-  ok,              ///< within the pairs' hull and near a pair
+  ok,              ///< within the pairs' hull, near a pair, 2 std_m within the maximal error
+  uncertain,       ///< 2 std_m (the 95% bound) above MappingCommonOptions::max_error
   extrapolated,    ///< farther than the extrapolation distance from any pair
   outside_hull,    ///< outside the convex hull of the pairs
   not_invertible,  ///< the inverse does not exist here (the mapping folds) or did not converge
@@ -32,7 +35,10 @@ std::string to_string(MapFlag flag);
 struct MappedPoint {
   Eigen::Vector2d point = Eigen::Vector2d::Zero();  ///< metres, in the target frame (NaN if
                                                     ///< not_invertible)
-  std::optional<double> std_m;  ///< predictive standard deviation, where the model has one
+  /// Predictive standard deviation of the error (root mean square length of the 2D error
+  /// vector, see ErrorModel: |error| <= std_m about 63%, <= 2 std_m about 95% of the time);
+  /// empty where the model has no error model (too few pairs, or a file without one).
+  std::optional<double> std_m;
   double nearest_pair_m = 0.0;  ///< metres from the input point to the nearest reference pair
   MapFlag flag = MapFlag::ok;   ///< how far to trust it
 };
@@ -48,11 +54,14 @@ struct InverseMapping {
 /// Settings every mapping model shares.
 struct MappingCommonOptions {
   double extrapolation_distance = 2.0;  ///< metres: farther from every pair is "extrapolated"
-  ReductionOptions reduction;           ///< pair budget of models that reduce their pairs
-  std::size_t support_budget = 2000;    ///< pairs kept for confidence, hull and inverse start
-  double inverse_tolerance = 1e-9;      ///< Newton inverse: residual relative to the extent
-  int inverse_max_iterations = 50;      ///< Newton inverse: steps at most
-  std::uint64_t seed = 1;               ///< randomness of the fit (RANSAC, subsampling)
+  /// Metres: a point whose 95% bound (2 std_m) exceeds this is flagged "uncertain" (0.25 m:
+  /// nav2's default goal tolerance, what a navigation goal may be off).
+  double max_error = 0.25;
+  ReductionOptions reduction;         ///< pair budget of models that reduce their pairs
+  std::size_t support_budget = 2000;  ///< pairs kept for confidence, hull and inverse start
+  double inverse_tolerance = 1e-9;    ///< Newton inverse: residual relative to the extent
+  int inverse_max_iterations = 50;    ///< Newton inverse: steps at most
+  std::uint64_t seed = 1;             ///< randomness of the fit (RANSAC, subsampling)
 };
 
 /// Checks `options`; throws InputError naming `mapping.<field>` when one is out of range.
@@ -133,8 +142,19 @@ class PointMapping {
   /// similarity's inverse, to inverse_tolerance x extent; not invertible where det J changes
   /// sign against the similarity's or the iterations fail).
   virtual InverseMapping inverse(const Eigen::Vector2d& point_in_grid) const;
-  /// Predictive standard deviation of the grid point (metres), where the model has one.
+  /// The model's own posterior standard deviation of the grid point (metres), where the model
+  /// has one (the GP's): it sees only uncorrelated pair noise, so map_forward() does not
+  /// report it; std_m is error_std().
   virtual std::optional<double> predictive_std(const Eigen::Vector2d& point_in_plan) const;
+  /// The calibrated standard deviation of the mapping's error at a plan point (ErrorModel at
+  /// its distance from the nearest pair), or nullopt without an error model.
+  std::optional<double> error_std(const Eigen::Vector2d& point_in_plan) const;
+  /// The error model (from a blocked cross-validation), if any.
+  const std::optional<ErrorModel>& error_model() const { return error_model_; }
+  /// Sets the error model (nullopt: the model states no std_m).
+  void set_error_model(std::optional<ErrorModel> model) { error_model_ = std::move(model); }
+  /// Sets the maximal 95% error bound of an `ok` point, metres (> 0; InputError otherwise).
+  void set_max_error(double metres);
 
   /// A plan pose in the grid frame: position forward, heading through the Jacobian.
   Pose2 forward_pose(const Pose2& pose_in_plan) const;
@@ -187,6 +207,8 @@ class PointMapping {
 
  private:
   void build_support(const ReferencePairs& pairs);
+  MapFlag flag_of(bool inside_hull, double nearest_pair_m,
+                  const std::optional<double>& std_m) const;
 
   MappingCommonOptions common_;
   FitSummary summary_;
@@ -199,6 +221,7 @@ class PointMapping {
   Eigen::Matrix3d T_support_ = Eigen::Matrix3d::Identity();
   double extent_ = 1.0;
   double unit_ = 1.0;
+  std::optional<ErrorModel> error_model_;
 };
 
 }  // namespace floorgrid

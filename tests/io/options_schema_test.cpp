@@ -72,6 +72,7 @@ TEST(OptionsSchema, EveryFieldOfEveryOptionsStructIsListed) {
   expect_complete<ThinPlateSplineLatticeOptions>("ThinPlateSplineLatticeOptions");
   expect_complete<AutoOptions>("AutoOptions");
   expect_complete<CrossValidationOptions>("CrossValidationOptions");
+  expect_complete<ErrorModelOptions>("ErrorModelOptions");
 }
 
 TEST(OptionsSchema, TheDumpReadsBackToTheSameDump) {

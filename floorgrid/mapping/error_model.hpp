@@ -1,0 +1,79 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <cstddef>
+#include <optional>
+#include <span>
+
+#include "floorgrid/geometry/point_index.hpp"
+
+namespace floorgrid {
+
+/// One pair held out by a spatially blocked cross-validation: how far the model fitted without
+/// its block missed it, and how far it lay from the pairs that model saw.
+struct HeldOutResidual {
+  double error_m = 0.0;    ///< |model(plan point) - grid point|, metres
+  double nearest_m = 0.0;  ///< plan metres from its plan point to the nearest training pair
+  Eigen::Vector2d point_in_plan = Eigen::Vector2d::Zero();  ///< where it was held out
+};
+
+/// How an error model is fitted.
+struct ErrorModelOptions {
+  /// Held-out pairs needed at least: with fewer the model states no std_m.
+  std::size_t min_residuals = 30;
+  /// Calibration factor on the fitted variance, tuned on the simulator's presets and ACES seed
+  /// 1 (the median model's true errors then lie within std_m 69% and within 2 std_m 95% of the
+  /// time there): the held-out errors include the pairs' own noise, which a model's error at a
+  /// point does not.
+  double variance_scale = 0.7;
+  /// Metres: radius (Gaussian sigma) over which the held-out errors around a point say how much
+  /// worse or better than the global fit the model is there (0: no local part).
+  double local_radius = 1.0;
+  /// Pseudo-count of the global fit in that local average (more: closer to the global fit).
+  double local_prior = 1.0;
+};
+
+/// Checks `options`; throws InputError naming `<prefix><field>`.
+void validate(const ErrorModelOptions& options, const char* prefix = "mapping.uncertainty.");
+
+/// A mapping model's predictive error at a plan point p whose nearest reference pair is d
+/// metres away: var(p) = f(p) (s0^2 + (g d)^2), the variance of the 2D error vector (E|e|^2,
+/// both axes together). std_m = sqrt(var) is the root mean square length of the error: for an
+/// isotropic Gaussian error |e| <= std_m holds 63% of the time and |e| <= 2 std_m 98%.
+/// s0 carries what no posterior over the pairs sees (pair errors correlated along a scan and a
+/// wall, the model's misfit), g the growth away from the pairs, both fitted by maximum
+/// likelihood on spatially blocked cross-validation residuals; f(p) is the local misfit: the
+/// held-out errors near p over what s0 and g expect of them, a Gaussian-weighted mean shrunk
+/// towards 1 (where the model errs more than elsewhere, its std is larger there).
+struct ErrorModel {
+  double base_std_m = 0.0;      ///< s0: metres, at a pair
+  double growth = 0.0;          ///< g: metres of std per metre from the nearest pair
+  std::size_t residuals = 0;    ///< held-out pairs it was fitted on
+  double max_nearest_m = 0.0;   ///< the farthest held-out pair from its training pairs, metres
+  double local_radius_m = 0.0;  ///< the local part's radius (0: none)
+  double local_prior = 1.0;     ///< the global fit's pseudo-count in the local mean
+  /// The held-out pairs' plan points and their squared error over s0^2 + (g d)^2.
+  Eigen::Matrix2Xd local_points;
+  Eigen::VectorXd local_ratios;  ///< one per local point, >= 0
+
+  /// std_m at `nearest_m` metres from the nearest pair, without the local part.
+  double std_at(double nearest_m) const;
+  /// std_m at `point_in_plan`, `nearest_m` metres from the nearest pair.
+  double std_at(const Eigen::Vector2d& point_in_plan, double nearest_m) const;
+  /// f(p): the local factor at a plan point (1 without a local part).
+  double local_factor(const Eigen::Vector2d& point_in_plan) const;
+  /// Indexes local_points (after setting them by hand, as a model file's reader does).
+  void index_local_points();
+
+ private:
+  PointIndex2D local_index_;
+};
+
+/// Fits s0 and g by maximum likelihood on `residuals` (each error a 2D isotropic Gaussian of
+/// variance var(d): its length is Rayleigh distributed), keeps the local part, and scales the
+/// variance by options.variance_scale. nullopt with fewer than options.min_residuals finite
+/// residuals.
+std::optional<ErrorModel> fit_error_model(std::span<const HeldOutResidual> residuals,
+                                          const ErrorModelOptions& options = {});
+
+}  // namespace floorgrid
