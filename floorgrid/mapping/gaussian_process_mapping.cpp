@@ -5,6 +5,7 @@
 
 #include "floorgrid/core/error.hpp"
 #include "floorgrid/geometry/transform_estimation.hpp"
+#include "floorgrid/mapping/cross_validation_folds.hpp"
 #include "floorgrid/mapping/gp_blocked_tuning.hpp"
 #include "floorgrid/mapping/model_file.hpp"
 #include "floorgrid/mapping/pair_preparation.hpp"
@@ -70,12 +71,14 @@ void GaussianProcessMapping::fit_model(const ReferencePairs& pairs, FitSummary& 
                           : "least-squares similarity of all pairs"}};
   }
   Eigen::Matrix2Xd outputs =
-      pairs.points_in_grid - ((T_grid_plan_.topLeftCorner<2, 2>() * pairs.points_in_plan).colwise() +
-                              T_grid_plan_.topRightCorner<2, 1>());
+      pairs.points_in_grid -
+      ((T_grid_plan_.topLeftCorner<2, 2>() * pairs.points_in_plan).colwise() +
+       T_grid_plan_.topRightCorner<2, 1>());
   GaussianProcessOptions options = gp_options_;
   Value blocked;
   std::optional<GpTuningResult> likelihood;
-  if (!options.hyperparameters && pairs.size() >= 3) {
+  if (!options.hyperparameters &&
+      static_cast<std::size_t>(pairs.size()) >= kBlockedTuningMinPairs) {
     // The likelihood's hyperparameters, then their scale re-chosen by blocked CV on the same
     // spread subsample (see refine_by_blocked_cv).
     const Eigen::Matrix2Xd centred = outputs.colwise() - outputs.rowwise().mean();
@@ -121,17 +124,21 @@ void GaussianProcessMapping::fit_model(const ReferencePairs& pairs, FitSummary& 
       {"signal_std_m", h.signal_std},
       {"noise_std_m", h.noise_std},
       {"tuned", s.tuned},
-      {"tuning", s.tuned ? "RPROP (iRprop+) on log-parameters, log marginal likelihood, "
-                           "analytic gradients; then length scales and noise std scaled by "
-                           "spatially blocked cross-validation on the same subsample"
-                         : "hyperparameters given"},
+      {"tuning",
+       !s.tuned ? "hyperparameters given"
+       : likelihood
+           ? "RPROP (iRprop+) on log-parameters, log marginal likelihood, analytic gradients; "
+             "then length scales and noise std scaled by spatially blocked cross-validation on "
+             "the same subsample"
+           : "RPROP (iRprop+) on log-parameters, log marginal likelihood, analytic gradients "
+             "(too few pairs for blocked cross-validation)"},
       {"likelihood_hyperparameters",
-       likelihood ? Value{{"length_scale_m",
-                           Value::array({likelihood->hyperparameters.length_scale.x(),
-                                         likelihood->hyperparameters.length_scale.y()})},
-                          {"signal_std_m", likelihood->hyperparameters.signal_std},
-                          {"noise_std_m", likelihood->hyperparameters.noise_std}}
-                  : Value()},
+       likelihood
+           ? Value{{"length_scale_m", Value::array({likelihood->hyperparameters.length_scale.x(),
+                                                    likelihood->hyperparameters.length_scale.y()})},
+                   {"signal_std_m", likelihood->hyperparameters.signal_std},
+                   {"noise_std_m", likelihood->hyperparameters.noise_std}}
+           : Value()},
       {"blocked_cv", blocked},
       {"tuning_points", s.tuning_points},
       {"training_points", s.training_points},

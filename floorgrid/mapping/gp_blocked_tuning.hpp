@@ -17,10 +17,10 @@ struct GpBlockedCandidate {
 
 /// What refine_by_blocked_cv chose.
 struct GpBlockedTuning {
-  GpHyperparameters hyperparameters;         ///< the candidate with the least held-out error
-  std::vector<GpBlockedCandidate> table;     ///< every candidate, in the order tried
-  double block_size = 0.0;                   ///< metres, side of the blocks held out
-  std::size_t folds = 0;                     ///< folds used
+  GpHyperparameters hyperparameters;      ///< the candidate with the least held-out error
+  std::vector<GpBlockedCandidate> table;  ///< every candidate, in the order tried
+  double block_size = 0.0;                ///< metres, side of the blocks held out
+  std::size_t folds = 0;                  ///< folds used
 };
 
 /// Length-scale factors refine_by_blocked_cv tries (1: the likelihood's own).

@@ -75,12 +75,19 @@ double ThinPlateSplineMapping::choose_regularization(const ReferencePairs& pairs
   order.resize(std::min(order.size(), options_.tuning_pairs));
   const ReferencePairs sample = select_pairs(pairs, order);
   // Whole spatial blocks held out (grid frame, metres): random folds of dense laser pairs keep
-  // a held-out pair's near-copies in training and so favour interpolating their noise.
-  Folds folds = blocked_folds(sample.points_in_grid, kTuningFolds,
-                              choose_block_size(sample.points_in_grid, kTuningFolds),
-                              common().seed);
-  if (folds.count < 2)
-    folds = random_folds(static_cast<std::size_t>(sample.size()), kTuningFolds, common().seed);
+  // a held-out pair's near-copies in training and so favour interpolating their noise. Sparse
+  // hand-picked pairs have no near-copies: there the subsample's own random order deals them.
+  Folds folds;
+  if (static_cast<std::size_t>(sample.size()) >= kBlockedTuningMinPairs) {
+    folds = blocked_folds(sample.points_in_grid, kTuningFolds,
+                          choose_block_size(sample.points_in_grid, kTuningFolds), common().seed);
+  }
+  if (folds.count < 2) {
+    folds.count = kTuningFolds;
+    folds.fold_of.resize(static_cast<std::size_t>(sample.size()));
+    for (std::size_t i = 0; i < folds.fold_of.size(); ++i)
+      folds.fold_of[i] = i % kTuningFolds;
+  }
   double best = 0.0, best_error = std::numeric_limits<double>::infinity();
   for (const double lambda : {0.0, 1e-3, 1e-2, 0.1, 1.0, 3.0, 10.0, 30.0, 100.0, 300.0, 1000.0}) {
     const double error = cross_validated_error(sample, folds, lambda);
@@ -103,15 +110,16 @@ void ThinPlateSplineMapping::fit_model(const ReferencePairs& pairs, FitSummary& 
   const Eigen::Matrix2Xd residual =
       spline_->evaluate_batch(pairs.points_in_plan, 2) - pairs.points_in_grid;
   summary.rms_m = std::sqrt(residual.colwise().squaredNorm().mean());
-  summary.details = {{"centres", spline_->size()},
-                     {"regularization_m2", lambda},
-                     {"regularization_chosen",
-                      options_.regularization
-                          ? "given"
-                          : "5-fold spatially blocked cross-validation on a subsample, scaled by pairs / "
-                            "subsample"},
-                     {"regularization_cv_error_m", table},
-                     {"bending_energy", spline_->bending_energy()}};
+  summary.details = {
+      {"centres", spline_->size()},
+      {"regularization_m2", lambda},
+      {"regularization_chosen",
+       options_.regularization
+           ? "given"
+           : "5-fold spatially blocked cross-validation on a subsample, scaled by pairs / "
+             "subsample"},
+      {"regularization_cv_error_m", table},
+      {"bending_energy", spline_->bending_energy()}};
 }
 
 Eigen::Vector2d ThinPlateSplineMapping::forward(const Eigen::Vector2d& p) const {

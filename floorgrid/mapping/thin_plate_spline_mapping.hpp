@@ -23,10 +23,10 @@ struct ThinPlateSplineModelOptions {
 /// `tps`: a thin-plate spline from plan to grid with a regularization weight, as in the QGIS
 /// and GDAL georeferencers (there unregularized). Pairs are reduced by spatial binning first.
 /// Unless given, lambda is chosen among 0 and 10^-3 .. 10^3 m^2 by 5-fold spatially blocked
-/// cross-validation (blocks of the grid frame, see blocked_folds) on a random subsample of at most `tuning_pairs` pairs, then scaled by (pairs / subsample) so
-/// the penalty keeps its weight against the larger sum of squared residuals.
-/// Large batches are mapped through a bicubic lattice of the spline (built on first use,
-/// added error well under 1 mm on binned pairs); single points exactly.
+/// cross-validation (blocks of the grid frame, see blocked_folds) on a random subsample of at most
+/// `tuning_pairs` pairs, then scaled by (pairs / subsample) so the penalty keeps its weight against
+/// the larger sum of squared residuals. Large batches are mapped through a bicubic lattice of the
+/// spline (built on first use, added error well under 1 mm on binned pairs); single points exactly.
 class ThinPlateSplineMapping : public PointMapping {
  public:
   /// A tps model.
