@@ -1,5 +1,6 @@
 #include "floorgrid/mapping/gaussian_process_mapping.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 
@@ -32,6 +33,9 @@ namespace {
 
 /// Folds of the blocked cross-validation that re-chooses the hyperparameters' scale.
 constexpr std::size_t kTuningFolds = 5;
+
+/// gp's smallest length scale, in extents of the pairs.
+constexpr double kGpMinLengthExtent = 0.25;
 
 /// gp's mean: the least-squares similarity of every pair, or a zero one (the GP's constant
 /// mean alone) where the pairs determine none.
@@ -75,6 +79,13 @@ void GaussianProcessMapping::fit_model(const ReferencePairs& pairs, FitSummary& 
       ((T_grid_plan_.topLeftCorner<2, 2>() * pairs.points_in_plan).colwise() +
        T_grid_plan_.topRightCorner<2, 1>());
   GaussianProcessOptions options = gp_options_;
+  if (!global_) {
+    // gp models the building's smooth global warp about its similarity (a bend, a drift): a
+    // kernel at least a quarter of the pairs' extent long. gpgt's short kernel follows local
+    // residuals; with gp's, what both miss far from the pairs stays the similarity's.
+    options.tuning.min_length_scale_extent =
+        std::max(options.tuning.min_length_scale_extent, kGpMinLengthExtent);
+  }
   Value blocked;
   std::optional<GpTuningResult> likelihood;
   if (!options.hyperparameters &&

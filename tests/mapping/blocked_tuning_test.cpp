@@ -95,7 +95,9 @@ TEST(BlockedTuning, TpsSmoothingChosenOnBlocksBeatsInterpolatingSharedNoise) {
 TEST(BlockedTuning, GpKernelScaleChosenOnBlocksBeatsTheLikelihoodsOnSharedNoise) {
   const test::Truth truth = test::bent();
   const ReferencePairs pairs = clustered_pairs(150, 10, truth, 0.08, 12);
-  for (const char* name : {"gp", "gpgt"}) {
+  // gpgt: gp's kernel is at least a quarter of the pairs' extent long, which the likelihood
+  // already reaches here.
+  for (const char* name : {"gpgt"}) {
     auto chosen = make_mapping(model_options(name));
     const FitSummary summary = chosen->fit(pairs);
     const Value* likelihood = summary.details.find("likelihood_hyperparameters");
