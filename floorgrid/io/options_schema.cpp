@@ -113,6 +113,11 @@ void visit(OptionVisitor& v, GpTuningOptions& o) {
       {.unit = "",
        .doc = "Smallest length scale, in median nearest-neighbour distances of the tuning points",
        .choices = {}});
+  v.field("min_length_scale_extent", o.min_length_scale_extent,
+          {.unit = "",
+           .doc = "Smallest length scale also in extents of the training points (0: none; gp "
+                  "uses at least 0.25)",
+           .choices = {}});
   v.field("max_length_scale_factor", o.max_length_scale_factor,
           {.unit = "",
            .doc = "Largest length scale, in extents of the training points",

@@ -40,6 +40,10 @@ double choose_block_size(const Eigen::Matrix2Xd& points, std::size_t folds);
 /// Largest block side choose_block_size returns, metres: a few metres, the scale of a room
 /// or a stretch of corridor, beyond the reach of a scan's near-copies.
 inline constexpr double kLargestAutoBlock = 4.0;
+/// Pairs from which a model tunes itself (tps's smoothing, the GP's kernel scale) on blocked
+/// folds: fewer are sparse, hand-picked pairs without near-copies, where a block holds about
+/// one pair anyway and the classic folds were measured better (Halmstad leave-one-out).
+inline constexpr std::size_t kBlockedTuningMinPairs = 100;
 /// Non-empty blocks per fold choose_block_size asks for at least.
 inline constexpr std::size_t kAutoBlocksPerFold = 4;
 

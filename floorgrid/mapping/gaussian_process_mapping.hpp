@@ -8,16 +8,19 @@
 
 namespace floorgrid {
 
-/// `gp` (thesis 4.4.1) and `gpgt` (4.4.2): a Gaussian process over the plan predicting the grid
-/// coordinates (gp), or a global similarity plus a Gaussian process on its residuals (gpgt), so
-/// that far from the pairs the map falls back to the similarity instead of a constant. One
-/// squared-exponential kernel with a length scale per plan axis is shared by both output
-/// coordinates (one Cholesky serves both); its hyperparameters maximize the log marginal
-/// likelihood by RPROP on log-parameters with analytic gradients, tuned on a spread subsample
-/// of at most 400 reduced pairs and then conditioned on all of them. The mean is evaluated on a
-/// lattice with bicubic interpolation (measured added error <= 1 mm); the predictive standard
-/// deviation is exact. An exact GP over every laser pair is infeasible: the pairs are first
-/// reduced by spatial binning (MappingCommonOptions::reduction), and the model file says so.
+/// `gp` (thesis 4.4.1) and `gpgt` (4.4.2): a global similarity plus a Gaussian process on its
+/// residuals, so that far from the pairs the map falls back to the similarity: gp's is the
+/// least-squares similarity of all pairs (the thesis' constant mean sent every point far from
+/// the pairs to their centroid), gpgt's the RANSAC one of `gt`. One squared-exponential kernel
+/// with a length scale per plan axis is shared by both output coordinates (one Cholesky serves
+/// both); its hyperparameters maximize the log marginal likelihood by RPROP on log-parameters
+/// with analytic gradients, tuned on a spread subsample of at most 400 reduced pairs; then
+/// their scale (length scales, noise std) is re-chosen by spatially blocked cross-validation on
+/// that subsample (refine_by_blocked_cv), and the GP is conditioned on all pairs. The mean is
+/// evaluated on a lattice with bicubic interpolation (measured added error <= 1 mm); the
+/// predictive standard deviation is exact. An exact GP over every laser pair is infeasible: the
+/// pairs are first reduced by spatial binning (MappingCommonOptions::reduction), and the model
+/// file says so.
 class GaussianProcessMapping : public PointMapping {
  public:
   /// A gp model (`on_global_transform` false) or a gpgt model (true, with `ransac` for its
@@ -51,7 +54,7 @@ class GaussianProcessMapping : public PointMapping {
   GaussianProcessOptions gp_options_;
   bool global_;
   RansacOptions ransac_;
-  Eigen::Matrix3d T_grid_plan_ = Eigen::Matrix3d::Identity();  ///< gpgt's similarity
+  Eigen::Matrix3d T_grid_plan_ = Eigen::Matrix3d::Identity();  ///< the mean similarity
   std::optional<GaussianProcess> process_;
 };
 

@@ -67,6 +67,11 @@ void validate_gp_tuning_options(const GpTuningOptions& options, const std::strin
     fail(prefix, "min_length_scale_factor", "must be finite and > 0",
          options.min_length_scale_factor);
   }
+  if (!(options.min_length_scale_extent >= 0.0) ||
+      !(options.min_length_scale_extent <= options.max_length_scale_factor)) {
+    fail(prefix, "min_length_scale_extent", "must be >= 0 and <= max_length_scale_factor",
+         options.min_length_scale_extent);
+  }
   if (!(options.max_length_scale_factor > 0.0) || !std::isfinite(options.max_length_scale_factor)) {
     fail(prefix, "max_length_scale_factor", "must be finite and > 0",
          options.max_length_scale_factor);
@@ -119,7 +124,9 @@ GpHyperparameterBounds gp_hyperparameter_bounds(Eigen::Ref<const Eigen::Matrix2X
 
   GpHyperparameterBounds bounds;
   const double max_length = options.max_length_scale_factor * e;
-  const double min_length = std::min(options.min_length_scale_factor * spacing, max_length);
+  const double min_length = std::min(
+      std::max(options.min_length_scale_factor * spacing, options.min_length_scale_extent * e),
+      max_length);
   bounds.lower.length_scale = Eigen::Vector2d::Constant(min_length);
   bounds.upper.length_scale = Eigen::Vector2d::Constant(max_length);
   bounds.lower.signal_std = floor;

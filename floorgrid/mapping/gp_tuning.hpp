@@ -23,6 +23,9 @@ struct GpTuningOptions {
   /// the smallest length scale, as a multiple of the tuning points' median nearest-neighbour
   /// distance (below it the subsample cannot see the length scale); > 0
   double min_length_scale_factor = 1.0;
+  /// the smallest length scale also as a multiple of the training points' extent (0: no such
+  /// floor); >= 0 and <= max_length_scale_factor
+  double min_length_scale_extent = 0.0;
   /// the largest length scale, as a multiple of the training points' extent (the longer side
   /// of their bounding box; beyond it the kernel is flat over the data); >= min
   double max_length_scale_factor = 10.0;

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "floorgrid/core/random.hpp"
+#include "floorgrid/mapping/cross_validation_folds.hpp"
 #include "floorgrid/mapping/pair_preparation.hpp"
 
 #include "floorgrid/core/error.hpp"
@@ -13,6 +14,9 @@
 namespace floorgrid {
 
 namespace {
+/// Folds of the blocked cross-validation that chooses lambda.
+constexpr std::size_t kTuningFolds = 5;
+
 std::string fmt_lambda(double lambda) {
   std::ostringstream out;
   out << lambda;
@@ -32,26 +36,27 @@ ThinPlateSplineMapping::ThinPlateSplineMapping(MappingCommonOptions common,
 
 namespace {
 
-/// Mean held-out error of a spline with `lambda` over 5 folds of `pairs`.
-double cross_validated_error(const ReferencePairs& pairs, double lambda) {
-  const Eigen::Index n = pairs.size();
+/// Mean held-out error of a spline with `lambda` over `folds` of `pairs`.
+double cross_validated_error(const ReferencePairs& pairs, const Folds& folds, double lambda) {
   double sum = 0.0;
-  for (int fold = 0; fold < 5; ++fold) {
+  std::size_t count = 0;
+  for (std::size_t fold = 0; fold < folds.count; ++fold) {
     std::vector<Eigen::Index> train, test;
-    for (Eigen::Index i = 0; i < n; ++i)
-      (i % 5 == fold ? test : train).push_back(i);
+    for (std::size_t i = 0; i < folds.fold_of.size(); ++i)
+      (folds.fold_of[i] == fold ? test : train).push_back(static_cast<Eigen::Index>(i));
     const ReferencePairs t = select_pairs(pairs, train);
     try {
       const ThinPlateSpline spline =
           ThinPlateSpline::fit(t.points_in_plan, t.points_in_grid, {lambda});
       for (const Eigen::Index i : test) {
         sum += (spline.evaluate(pairs.points_in_plan.col(i)) - pairs.points_in_grid.col(i)).norm();
+        ++count;
       }
     } catch (const InputError&) {
       return std::numeric_limits<double>::infinity();
     }
   }
-  return sum / static_cast<double>(n);
+  return count > 0 ? sum / static_cast<double>(count) : std::numeric_limits<double>::infinity();
 }
 
 }  // namespace
@@ -69,9 +74,23 @@ double ThinPlateSplineMapping::choose_regularization(const ReferencePairs& pairs
   }
   order.resize(std::min(order.size(), options_.tuning_pairs));
   const ReferencePairs sample = select_pairs(pairs, order);
+  // Whole spatial blocks held out (grid frame, metres): random folds of dense laser pairs keep
+  // a held-out pair's near-copies in training and so favour interpolating their noise. Sparse
+  // hand-picked pairs have no near-copies: there the subsample's own random order deals them.
+  Folds folds;
+  if (static_cast<std::size_t>(sample.size()) >= kBlockedTuningMinPairs) {
+    folds = blocked_folds(sample.points_in_grid, kTuningFolds,
+                          choose_block_size(sample.points_in_grid, kTuningFolds), common().seed);
+  }
+  if (folds.count < 2) {
+    folds.count = kTuningFolds;
+    folds.fold_of.resize(static_cast<std::size_t>(sample.size()));
+    for (std::size_t i = 0; i < folds.fold_of.size(); ++i)
+      folds.fold_of[i] = i % kTuningFolds;
+  }
   double best = 0.0, best_error = std::numeric_limits<double>::infinity();
   for (const double lambda : {0.0, 1e-3, 1e-2, 0.1, 1.0, 3.0, 10.0, 30.0, 100.0, 300.0, 1000.0}) {
-    const double error = cross_validated_error(sample, lambda);
+    const double error = cross_validated_error(sample, folds, lambda);
     table[fmt_lambda(lambda)] = std::isfinite(error) ? Value(error) : Value(nullptr);
     if (error < best_error) {
       best_error = error;
@@ -91,14 +110,16 @@ void ThinPlateSplineMapping::fit_model(const ReferencePairs& pairs, FitSummary& 
   const Eigen::Matrix2Xd residual =
       spline_->evaluate_batch(pairs.points_in_plan, 2) - pairs.points_in_grid;
   summary.rms_m = std::sqrt(residual.colwise().squaredNorm().mean());
-  summary.details = {{"centres", spline_->size()},
-                     {"regularization_m2", lambda},
-                     {"regularization_chosen",
-                      options_.regularization
-                          ? "given"
-                          : "5-fold cross-validation on a subsample, scaled by pairs / subsample"},
-                     {"regularization_cv_error_m", table},
-                     {"bending_energy", spline_->bending_energy()}};
+  summary.details = {
+      {"centres", spline_->size()},
+      {"regularization_m2", lambda},
+      {"regularization_chosen",
+       options_.regularization
+           ? "given"
+           : "5-fold spatially blocked cross-validation on a subsample, scaled by pairs / "
+             "subsample"},
+      {"regularization_cv_error_m", table},
+      {"bending_energy", spline_->bending_energy()}};
 }
 
 Eigen::Vector2d ThinPlateSplineMapping::forward(const Eigen::Vector2d& p) const {

@@ -13,7 +13,7 @@ namespace floorgrid {
 /// Options of the `tps` model.
 struct ThinPlateSplineModelOptions {
   /// Regularization weight lambda, m^2 (0 interpolates); nullopt chooses it by 5-fold
-  /// cross-validation on a subsample (see ThinPlateSplineMapping).
+  /// spatially blocked cross-validation on a subsample (see ThinPlateSplineMapping).
   std::optional<double> regularization;
   std::size_t tuning_pairs = 400;         ///< subsample size of the lambda choice
   ThinPlateSplineLatticeOptions lattice;  ///< for mapping many points at once
@@ -22,11 +22,11 @@ struct ThinPlateSplineModelOptions {
 
 /// `tps`: a thin-plate spline from plan to grid with a regularization weight, as in the QGIS
 /// and GDAL georeferencers (there unregularized). Pairs are reduced by spatial binning first.
-/// Unless given, lambda is chosen among 0 and 10^-3 .. 10^3 m^2 by 5-fold cross-validation on
-/// a random subsample of at most `tuning_pairs` pairs, then scaled by (pairs / subsample) so
-/// the penalty keeps its weight against the larger sum of squared residuals.
-/// Large batches are mapped through a bicubic lattice of the spline (built on first use,
-/// added error well under 1 mm on binned pairs); single points exactly.
+/// Unless given, lambda is chosen among 0 and 10^-3 .. 10^3 m^2 by 5-fold spatially blocked
+/// cross-validation (blocks of the grid frame, see blocked_folds) on a random subsample of at most
+/// `tuning_pairs` pairs, then scaled by (pairs / subsample) so the penalty keeps its weight against
+/// the larger sum of squared residuals. Large batches are mapped through a bicubic lattice of the
+/// spline (built on first use, added error well under 1 mm on binned pairs); single points exactly.
 class ThinPlateSplineMapping : public PointMapping {
  public:
   /// A tps model.
