@@ -128,4 +128,20 @@ double choose_block_size(const Eigen::Matrix2Xd& points, std::size_t folds) {
   return size;
 }
 
+void Folds::split(std::size_t fold, std::vector<Eigen::Index>& train,
+                  std::vector<Eigen::Index>& test) const {
+  train.clear();
+  test.clear();
+  const auto add = [&](std::size_t i) {
+    (fold_of[i] == fold ? test : train).push_back(static_cast<Eigen::Index>(i));
+  };
+  if (order.empty()) {
+    for (std::size_t i = 0; i < fold_of.size(); ++i)
+      add(i);
+  } else {
+    for (const std::size_t i : order)
+      add(i);
+  }
+}
+
 }  // namespace floorgrid

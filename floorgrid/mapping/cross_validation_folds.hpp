@@ -17,6 +17,11 @@ struct Folds {
   /// Every pair once, in the order training and test sets list them (random folds: the
   /// shuffled order, as k-fold always dealt them; blocked folds: the pairs' own order).
   std::vector<std::size_t> order;
+
+  /// The pairs of `fold` (test) and of every other fold (train), in `order` (index order when
+  /// it is empty): some fits depend on the order of their pairs (ct's clustering).
+  void split(std::size_t fold, std::vector<Eigen::Index>& train,
+             std::vector<Eigen::Index>& test) const;
 };
 
 /// Random folds, the classic k-fold: the pairs shuffled by `seed`, then dealt round robin into

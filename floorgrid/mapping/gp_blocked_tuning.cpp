@@ -23,8 +23,7 @@ double held_out_error(Eigen::Ref<const Eigen::Matrix2Xd> points,
   std::size_t count = 0;
   for (std::size_t f = 0; f < folds.count; ++f) {
     std::vector<Eigen::Index> train, test;
-    for (std::size_t i = 0; i < folds.fold_of.size(); ++i)
-      (folds.fold_of[i] == f ? test : train).push_back(static_cast<Eigen::Index>(i));
+    folds.split(f, train, test);
     if (train.size() < 3 || test.empty())
       continue;
     Eigen::Matrix2Xd train_points(2, static_cast<Eigen::Index>(train.size()));

@@ -55,9 +55,7 @@ CrossValidationResult cross_validate(const MappingOptions& options, const Refere
   std::vector<double> errors;
   for (std::size_t f = 0; f < folds.count; ++f) {
     std::vector<Eigen::Index> train, test;
-    // In the folds' order: some fits (ct's clustering) depend on the order of their pairs.
-    for (const std::size_t i : folds.order)
-      (folds.fold_of[i] == f ? test : train).push_back(static_cast<Eigen::Index>(i));
+    folds.split(f, train, test);
     auto model = make_mapping(options);
     try {
       model->fit(select_pairs(pairs, train));

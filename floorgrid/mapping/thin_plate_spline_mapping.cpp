@@ -42,8 +42,7 @@ double cross_validated_error(const ReferencePairs& pairs, const Folds& folds, do
   std::size_t count = 0;
   for (std::size_t fold = 0; fold < folds.count; ++fold) {
     std::vector<Eigen::Index> train, test;
-    for (std::size_t i = 0; i < folds.fold_of.size(); ++i)
-      (folds.fold_of[i] == fold ? test : train).push_back(static_cast<Eigen::Index>(i));
+    folds.split(fold, train, test);
     const ReferencePairs t = select_pairs(pairs, train);
     try {
       const ThinPlateSpline spline =
