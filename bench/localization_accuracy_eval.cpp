@@ -418,18 +418,21 @@ int main(int argc, char** argv) {
         turn = std::abs(wrap(b.theta - a.theta)) * 180 / M_PI;
       }
       out << fmt::format(
-          "{},{:.3f},{:.1f},{},{:.3f},{:.2f},{},{},{},{:.3f},{:.2f},{:.2f},{:.3f},{:.3f},{},{:.3f},"
-          "{},"
-          "{},{}",
-          s.scan, step, turn, s.grid.converged ? 1 : 0,
-          std::hypot(s.grid.pose.x - t[4], s.grid.pose.y - t[5]), s.grid.fit,
-          to_string(s.grid.match.failure), to_string(s.plan.state), s.plan.converged ? 1 : 0,
-          std::hypot(s.plan.pose.x - t[1] * plan_per_world, s.plan.pose.y - t[2] * plan_per_world),
-          wrap(s.plan.pose.theta - t[3]) * 180 / M_PI, s.plan.fit, s.plan.estimate.position_std,
-          s.plan.estimate.heading_std, to_string(s.plan.match.failure),
-          std::hypot(s.plan.match.pose.x - t[1] * plan_per_world,
-                     s.plan.match.pose.y - t[2] * plan_per_world),
-          s.plan_reinitialized ? 1 : 0, s.consistent ? 1 : 0, s.pairs)
+                 "{},{:.3f},{:.1f},{},{:.3f},{:.2f},{},{},{},{:.3f},{:.2f},{:.2f},{:.3f},{:.3f},{},"
+                 "{:.3f},"
+                 "{},"
+                 "{},{}",
+                 s.scan, step, turn, s.grid.converged ? 1 : 0,
+                 std::hypot(s.grid.pose.x - t[4], s.grid.pose.y - t[5]), s.grid.fit,
+                 to_string(s.grid.match.failure), to_string(s.plan.state), s.plan.converged ? 1 : 0,
+                 std::hypot(s.plan.pose.x - t[1] * plan_per_world,
+                            s.plan.pose.y - t[2] * plan_per_world),
+                 wrap(s.plan.pose.theta - t[3]) * 180 / M_PI, s.plan.fit,
+                 s.plan.estimate.position_std, s.plan.estimate.heading_std,
+                 to_string(s.plan.match.failure),
+                 std::hypot(s.plan.match.pose.x - t[1] * plan_per_world,
+                            s.plan.match.pose.y - t[2] * plan_per_world),
+                 s.plan_reinitialized ? 1 : 0, s.consistent ? 1 : 0, s.pairs)
           << fmt::format(",{:.3f},{:.3f},{},{}\n", s.grid.estimate.position_std,
                          s.grid.estimate.heading_std, s.grid.updated ? 1 : 0, 0);
     }
