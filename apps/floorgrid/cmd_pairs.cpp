@@ -35,16 +35,17 @@ void add_pairs_command(CLI::App& root) {
     for (const std::string& w : d.warnings)
       spdlog::warn("{}", w);
     ProgressLine progress;
+    const DualLocalizerInputs inputs = dual_inputs(d);
     const DualLocalization l =
-        localize_dual(dual_inputs(d), options.align.localization, [&](const DualProgress& p) {
+        localize_dual(inputs, options.align.localization, [&](const DualProgress& p) {
           progress.update(p.phase, p.scan, p.scans, p.converged ? "converged" : "not converged");
         });
     progress.finish();
     require_localized(l.status, d);
     require_pairs(l, d);
-    const PlanMatch match = judge_plan_match(
-        d.gridmap, d.plan_grid, d.plan ? PlanWalls::vector_lines : PlanWalls::raster_strokes,
-        l.pairs, options.align.localization.plan_location.map_registration);
+    const PlanMatch match =
+        judge_plan_match(inputs.gridmap, inputs.plan, plan_walls_of(inputs.plan_geometry), l.pairs,
+                         options.align.localization.plan_location.map_registration);
     require_plan_match(match, d, options.align.localization.plan_location.min_plan_match);
     io::write_pairs_csv(l.pairs, out);
     std::optional<ErrorStatistics> errors;

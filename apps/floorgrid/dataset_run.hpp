@@ -1,11 +1,10 @@
 #pragma once
 
-#include "floorgrid/pipeline/plan_match.hpp"
-
 #include <optional>
 
 #include "floorgrid/io/dataset_loader.hpp"
 #include "floorgrid/pipeline/dual_localizer.hpp"
+#include "floorgrid/pipeline/plan_match.hpp"
 
 namespace floorgrid::app {
 

@@ -119,13 +119,6 @@ WallDistance wall_distance(const Eigen::Matrix2Xd& samples, const Eigen::Matrix2
   return w;
 }
 
-PlanMatch judge_plan_match(const AlignmentInputs& inputs, const ReferencePairs& pairs,
-                           const MapRegistrationOptions& options) {
-  return judge_plan_match(inputs.gridmap, inputs.plan_grid,
-                          inputs.plan ? PlanWalls::vector_lines : PlanWalls::raster_strokes, pairs,
-                          options);
-}
-
 Alignment align(const AlignmentInputs& in, const AlignmentOptions& options,
                 const AlignmentProgressCallback& progress) {
   Alignment a;
@@ -150,8 +143,9 @@ Alignment align(const AlignmentInputs& in, const AlignmentOptions& options,
   if (in.truth_warp && a.localization.pairs.size() > 0)
     a.pair_errors = pair_errors(a.localization.pairs, in.truth_warp);
 
-  a.plan_match = judge_plan_match(in, a.localization.pairs,
-                                  options.localization.plan_location.map_registration);
+  a.plan_match =
+      judge_plan_match(in.gridmap, in.plan_grid, plan_walls_of(in.plan), a.localization.pairs,
+                       options.localization.plan_location.map_registration);
 
   // Every model, fitted and judged.
   if (a.localization.pairs.size() > 0)

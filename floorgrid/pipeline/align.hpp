@@ -91,10 +91,6 @@ using AlignmentProgressCallback = std::function<void(const AlignmentProgress&)>;
 Alignment align(const AlignmentInputs& inputs, const AlignmentOptions& options = {},
                 const AlignmentProgressCallback& progress = {});
 
-/// judge_plan_match on the inputs' maps and `pairs`.
-PlanMatch judge_plan_match(const AlignmentInputs& inputs, const ReferencePairs& pairs,
-                           const MapRegistrationOptions& options);
-
 /// The distance from each plan wall point, mapped by `plan_to_grid`, to the nearest occupied
 /// cell of `gridmap` (capped at `cap` metres), summarized over all points and over those
 /// within `near` metres of a pair's plan point.

@@ -103,11 +103,12 @@ FilterRecord FilterRunner::step(std::size_t i) {
           apply_proposal(filter_, walls_, points, options_.match, caster_, options_.beam_tolerance);
       corrections_ += proposal->ok() || proposal->failure == ScanMatchFailure::degenerate;
       status = filter_.step(OdometryMotion{}, observations_[i], model_, options_.threads);
-    } else if (guided) {
-      predict();
-      status = filter_.step(OdometryMotion{}, observations_[i], model_, options_.threads);
     } else {
-      status = filter_.step(motion, observations_[i], model_, options_.threads);
+      // A guided motion is predicted with its own noise first; the step then only weighs.
+      if (guided)
+        predict();
+      status = filter_.step(guided ? OdometryMotion{} : motion, observations_[i], model_,
+                            options_.threads);
     }
     evaluations_ += filter_.particles().size() * observations_[i].size();
     record.updated = true;

@@ -118,8 +118,8 @@ class FilterRunner {
   const std::vector<ScanObservation>& observations_;
   FilterRunnerOptions options_;
   const GridRayCaster* caster_;
-  /// The guide's motion from scan `from` to scan `to`, when both have a guide pose and it
-  /// agrees with the odometry's `odometry`.
+  /// The guide's motion from scan `from` to scan `to`, when both have a guide pose, the
+  /// odometry's step is large enough to be guided and the guide's motion agrees with it.
   std::optional<OdometryMotion> guided_motion(std::size_t from, std::size_t to) const;
 
   std::vector<std::optional<Pose2>> guide_;

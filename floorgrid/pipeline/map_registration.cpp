@@ -374,10 +374,6 @@ MapRegistration register_maps(const OccupancyGrid& gridmap, const OccupancyGrid&
   return result;
 }
 
-}  // namespace floorgrid
-
-namespace floorgrid {
-
 ScoredSimilarity refine_map_similarity(const OccupancyGrid& gridmap, const OccupancyGrid& plan,
                                        PlanWalls plan_walls, const MapSimilarity& start,
                                        const MapRegistrationOptions& options) {
@@ -385,13 +381,6 @@ ScoredSimilarity refine_map_similarity(const OccupancyGrid& gridmap, const Occup
   if (!scorer.usable())
     return {start, -1.0, 0.0, 1.0};
   return refine_in_steps(scorer, start, options.sigma);
-}
-
-ScoredSimilarity score_map_similarity(const OccupancyGrid& gridmap, const OccupancyGrid& plan,
-                                      PlanWalls plan_walls, const MapSimilarity& transform,
-                                      const MapRegistrationOptions& options) {
-  const Scorer scorer(gridmap, plan, plan_walls, options);
-  return scorer.score(transform, options.sigma);
 }
 
 }  // namespace floorgrid

@@ -5,6 +5,7 @@
 
 #include "floorgrid/geometry/pose2.hpp"
 #include "floorgrid/maps/occupancy_grid.hpp"
+#include "floorgrid/maps/vector_floorplan.hpp"
 
 namespace floorgrid {
 
@@ -64,6 +65,12 @@ enum class PlanWalls {
   vector_lines,    ///< a vector drawing rasterized: the wall is the line along the cells' centres
 };
 
+/// How a dataset's plan grid was drawn: rasterized from `plan_geometry` (a DXF's lines) when
+/// there is one, else a raster drawing.
+inline PlanWalls plan_walls_of(const VectorFloorplan* plan_geometry) {
+  return plan_geometry ? PlanWalls::vector_lines : PlanWalls::raster_strokes;
+}
+
 /// Registers the gridmap on the plan over scale, rotation and translation, coarse to fine:
 /// both maps' walls are turned to their dominant direction; their wall profiles along both axes
 /// are correlated over the scale lattice and every shift, for the four quarter turns (and 36
@@ -78,10 +85,5 @@ MapRegistration register_maps(const OccupancyGrid& gridmap, const OccupancyGrid&
 ScoredSimilarity refine_map_similarity(const OccupancyGrid& gridmap, const OccupancyGrid& plan,
                                        PlanWalls plan_walls, const MapSimilarity& start,
                                        const MapRegistrationOptions& options = {});
-
-/// The 2-D score register_maps gives `transform` (at its final closeness, options.sigma).
-ScoredSimilarity score_map_similarity(const OccupancyGrid& gridmap, const OccupancyGrid& plan,
-                                      PlanWalls plan_walls, const MapSimilarity& transform,
-                                      const MapRegistrationOptions& options = {});
 
 }  // namespace floorgrid

@@ -53,10 +53,8 @@ ScaleRange scale_range(const DualMaps& maps, const DualLocalizerInputs& inputs,
   const PlanLocationOptions& step = options.plan_location;
   if (inputs.plan_scale || !step.register_maps)
     return options.scale_search.range;
-  const MapRegistration reg =
-      register_maps(maps.gridmap(), inputs.plan,
-                    inputs.plan_geometry ? PlanWalls::vector_lines : PlanWalls::raster_strokes,
-                    step.map_registration);
+  const MapRegistration reg = register_maps(
+      maps.gridmap(), inputs.plan, plan_walls_of(inputs.plan_geometry), step.map_registration);
   if (!reg.found || reg.best.score < step.map_min_score) {
     result.notes.push_back(
         fmt::format("the gridmap could not be registered on the plan directly ({} candidates, best "
