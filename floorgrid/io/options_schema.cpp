@@ -655,6 +655,20 @@ void visit(OptionVisitor& v, OutlierScanOptions& o) {
            .doc = "Pairs of a scan that must have a consensus to compare with before the scan can "
                   "be dropped",
            .choices = {}});
+  v.field("max_gross_residual", o.max_gross_residual,
+          {.unit = "m",
+           .doc = "A scan whose pairs lie farther than this from the similarity is dropped, "
+                  "consensus or not",
+           .choices = {}});
+  v.field("gross_residual_scales", o.gross_residual_scales,
+          {.unit = "",
+           .doc = "The gross limit is at least this many times the pairs' median residual",
+           .choices = {}});
+  v.field("max_gross_fraction", o.max_gross_fraction,
+          {.unit = "",
+           .doc = "When more pairs than this fraction are beyond the gross limit, the map is "
+                  "distorted and none is dropped for it",
+           .choices = {}});
 }
 
 void visit(OptionVisitor& v, PairExtractionOptions& o) {

@@ -76,6 +76,29 @@ std::vector<std::vector<double>> deviations_per_scan(const Cells& cells,
   return deviations;
 }
 
+/// Per scan: whether its pairs lie grossly off the similarity (their median residual beyond
+/// the gross limit), unless so many pairs are that the map itself is distorted.
+std::vector<std::uint8_t> gross_scans(const Eigen::Matrix2Xd& residual,
+                                      const std::vector<std::size_t>& scan_of, std::size_t scans,
+                                      const OutlierScanOptions& options) {
+  std::vector<double> norms(static_cast<std::size_t>(residual.cols()));
+  for (Eigen::Index i = 0; i < residual.cols(); ++i)
+    norms[static_cast<std::size_t>(i)] = residual.col(i).norm();
+  const double limit =
+      std::max(options.max_gross_residual, options.gross_residual_scales * upper_median(norms));
+  std::vector<std::uint8_t> gross(scans, 0);
+  const auto beyond =
+      std::count_if(norms.begin(), norms.end(), [&](double r) { return r > limit; });
+  if (static_cast<double>(beyond) > options.max_gross_fraction * static_cast<double>(norms.size()))
+    return gross;
+  std::vector<std::vector<double>> per_scan(scans);
+  for (std::size_t i = 0; i < norms.size(); ++i)
+    per_scan[scan_of[i]].push_back(norms[i]);
+  for (std::size_t s = 0; s < scans; ++s)
+    gross[s] = !per_scan[s].empty() && upper_median(per_scan[s]) > limit;
+  return gross;
+}
+
 }  // namespace
 
 std::size_t reject_outlier_scans(ReferencePairs& pairs, std::vector<std::size_t>& pairs_per_scan,
@@ -90,14 +113,15 @@ std::size_t reject_outlier_scans(ReferencePairs& pairs, std::vector<std::size_t>
   const Eigen::Index n = pairs.size();
   const std::vector<std::size_t> scan_of =
       scan_of_pairs(pairs_per_scan, static_cast<std::size_t>(n));
+  const Eigen::Matrix2Xd residual = residuals(pairs, global.estimate.T_grid_plan);
   std::vector<std::vector<double>> deviations = deviations_per_scan(
-      cells_of(pairs, options.cell), residuals(pairs, global.estimate.T_grid_plan), scan_of,
-      pairs_per_scan.size(), options);
-  // Drop the scans whose median deviation is too large.
-  std::vector<std::uint8_t> drop(pairs_per_scan.size(), 0);
+      cells_of(pairs, options.cell), residual, scan_of, pairs_per_scan.size(), options);
+  // Drop the scans grossly off, and those whose median deviation is too large.
+  std::vector<std::uint8_t> drop = gross_scans(residual, scan_of, pairs_per_scan.size(), options);
   for (std::size_t s = 0; s < deviations.size(); ++s) {
-    if (deviations[s].size() >= options.min_scan_pairs)
-      drop[s] = upper_median(deviations[s]) > options.max_deviation;
+    if (deviations[s].size() >= options.min_scan_pairs &&
+        upper_median(deviations[s]) > options.max_deviation)
+      drop[s] = 1;
   }
   PairCollector kept;
   for (Eigen::Index i = 0; i < n; ++i) {

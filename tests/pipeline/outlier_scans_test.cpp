@@ -84,5 +84,46 @@ TEST(OutlierScans, KeepsConsistentScansAndHonoursItsLimits) {
   EXPECT_EQ(reject_outlier_scans(small, per_scan), 0u);
 }
 
+/// Appends `scans` scans of 40 pairs on a wall no other scan saw (plan y = 20, 5-9 m), the grid
+/// through the same similarity as scans_of_pairs, moved by `shift`.
+void append_unseen_scans(ReferencePairs& pairs, std::vector<std::size_t>& per_scan,
+                         std::size_t scans, const Eigen::Vector2d& shift) {
+  const double c = std::cos(0.2), s = std::sin(0.2);
+  const Eigen::Index n = pairs.size();
+  const auto added = static_cast<Eigen::Index>(40 * scans);
+  pairs.points_in_plan.conservativeResize(2, n + added);
+  pairs.points_in_grid.conservativeResize(2, n + added);
+  for (Eigen::Index k = 0; k < added; ++k) {
+    const Eigen::Vector2d p(5.0 + 0.1 * static_cast<double>(k % 40), 20.0);
+    pairs.points_in_plan.col(n + k) = p;
+    pairs.points_in_grid.col(n + k) = Eigen::Vector2d(2.0 + 1.05 * (c * p.x() - s * p.y()),
+                                                      -1.0 + 1.05 * (s * p.x() + c * p.y())) +
+                                      shift;
+  }
+  per_scan.insert(per_scan.end(), scans, 40);
+}
+
+TEST(OutlierScans, DropsScansGrosslyOffWhereNoOtherScanLooked) {
+  std::vector<std::size_t> per_scan;
+  // Three scans 3 m off, where no other scan saw the walls: no consensus, yet grossly off the
+  // similarity of the rest (a filter lost along a corridor).
+  ReferencePairs pairs = scans_of_pairs({}, Eigen::Vector2d::Zero(), per_scan);
+  append_unseen_scans(pairs, per_scan, 3, {2.4, 1.8});
+  EXPECT_EQ(reject_outlier_scans(pairs, per_scan), 3u);
+  EXPECT_EQ(pairs.size(), 2400);
+  // 0.4 m off there is a bend the map may have: kept.
+  pairs = scans_of_pairs({}, Eigen::Vector2d::Zero(), per_scan);
+  append_unseen_scans(pairs, per_scan, 3, {0.4, 0.0});
+  EXPECT_EQ(reject_outlier_scans(pairs, per_scan), 0u);
+  // Where more than a tenth of the pairs are that far off, the map is distorted: kept.
+  pairs = scans_of_pairs({}, Eigen::Vector2d::Zero(), per_scan);
+  append_unseen_scans(pairs, per_scan, 8, {2.4, 1.8});
+  EXPECT_EQ(reject_outlier_scans(pairs, per_scan), 0u);
+  // A limit above the offset keeps them too.
+  pairs = scans_of_pairs({}, Eigen::Vector2d::Zero(), per_scan);
+  append_unseen_scans(pairs, per_scan, 3, {2.4, 1.8});
+  EXPECT_EQ(reject_outlier_scans(pairs, per_scan, {.max_gross_residual = 3.5}), 0u);
+}
+
 }  // namespace
 }  // namespace floorgrid
