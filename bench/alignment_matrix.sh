@@ -1,10 +1,13 @@
 #!/usr/bin/env bash
 # The main job on every simulated preset and seed 1-3 (and office-inches), from the noisy
 # odometry in the log: median pair error, plan scale against the truth, and the models' mean
-# errors over SPEC's domain. Usage: bench/alignment_matrix.sh [build-dir] [work-dir]
+# errors over SPEC's domain. Usage: bench/alignment_matrix.sh [build-dir] [work-dir] [options.yaml]
+# (the options file, as `floorgrid config --dump` prints it, is passed to every align)
 set -euo pipefail
 build=${1:-build}
 work=${2:-$(mktemp -d)}
+config=()
+[ -n "${3:-}" ] && config=(--config "$3")
 bin="$build/floorgrid"
 printf '%-14s %4s %8s %8s %9s %9s %8s %8s %8s %8s %8s %6s\n' preset seed pair_med conv scale true_sc gt gpgt gp tps dt time_s
 for preset in office warehouse bent-office office-inches; do
@@ -14,7 +17,7 @@ for preset in office warehouse bent-office office-inches; do
     d="$work/$preset-$seed"
     "$bin" simulate --preset "$preset" --seed "$seed" --out "$d/dataset" > /dev/null
     start=$(date +%s.%N)
-    "$bin" align "$d/dataset" --out "$d/align" > "$d/align.log" 2>&1 || { echo "$preset $seed: align failed (see $d/align.log)"; continue; }
+    "$bin" align "$d/dataset" "${config[@]}" --out "$d/align" > "$d/align.log" 2>&1 || { echo "$preset $seed: align failed (see $d/align.log)"; continue; }
     end=$(date +%s.%N)
     python3 - "$d" "$preset" "$seed" "$(echo "$end - $start" | bc)" <<'PY'
 import json, sys

@@ -8,12 +8,15 @@
 # A second table: per row and model, how often the true error lies within std_m and 2 std_m
 # (metrics.json models.<name>.calibration; the bar: 60-75% and 90-98%), and the median std_m.
 #
-# Usage: bench/real_matrix.sh [build-dir] [work-dir] [seeds]   (seeds default "1 2 3")
+# Usage: bench/real_matrix.sh [build-dir] [work-dir] [seeds] [options.yaml]   (seeds default
+# "1 2 3"; the options file, as `floorgrid config --dump` prints it, is passed to every align)
 # Set tuned: ACES seed 1 was looked at while developing; every other row is held out.
 set -uo pipefail
 build=${1:-build}
 work=${2:-$(mktemp -d)}
 seeds=${3:-1 2 3}
+config=()
+[ -n "${4:-}" ] && config=(--config "$4")
 bin="$build/floorgrid"
 mkdir -p "$work"
 here=$(cd "$(dirname "$0")/.." && pwd)
@@ -40,7 +43,7 @@ for log in "${logs[@]}"; do
     "$bin" simulate --from-log "$log" --seed "$seed" --plan-format "$format" --out "$d/dataset" \
       > "$d.simulate.log" 2>&1 || { echo "$name $seed: simulate failed (see $d.simulate.log)"; continue; }
     start=$(date +%s.%N)
-    "$bin" align "$d/dataset" --out "$d/align" > "$d/align.log" 2>&1
+    "$bin" align "$d/dataset" "${config[@]}" --out "$d/align" > "$d/align.log" 2>&1
     rc=$?
     end=$(date +%s.%N)
     /usr/bin/python3 - "$d" "$name" "$seed" "$set_name" >> "$calibration" <<'PY'

@@ -13,19 +13,23 @@
 #include "floorgrid/io/atomic_file.hpp"
 #include "floorgrid/io/dataset_loader.hpp"
 #include "floorgrid/io/pairs_csv.hpp"
+#include "floorgrid/io/scans_csv.hpp"
 
 namespace floorgrid::app {
 
 void add_pairs_command(CLI::App& root) {
   auto* cmd = root.add_subcommand("pairs", "Reference pairs by dual Monte Carlo localization");
   struct Args {
-    std::string dataset, out;
+    std::string dataset, out, scans;
   };
   auto args = std::make_shared<Args>();
   auto job = std::make_shared<JobArgs>();
   cmd->add_option("DATASET", args->dataset, "dataset.yaml or its folder")->required();
   cmd->add_option("--out", args->out, "pairs CSV to write (plan_x,plan_y,grid_x,grid_y)")
       ->required();
+  cmd->add_option("--scans", args->scans,
+                  "CSV to write with each filter's pose, state and fit per scan (as align's "
+                  "scans.csv)");
   add_job_options(cmd, job, false);
   cmd->callback([args, job] {
     const JobOptions options = job_options(*job);
@@ -41,6 +45,8 @@ void add_pairs_command(CLI::App& root) {
           progress.update(p.phase, p.scan, p.scans, p.converged ? "converged" : "not converged");
         });
     progress.finish();
+    if (!args->scans.empty())
+      io::write_scans_csv(l, *d.log, args->scans);
     require_localized(l.status, d);
     require_pairs(l, d);
     const PlanMatch match =

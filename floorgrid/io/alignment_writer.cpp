@@ -8,6 +8,7 @@
 #include "floorgrid/io/image_io.hpp"
 #include "floorgrid/io/model_io.hpp"
 #include "floorgrid/io/pairs_csv.hpp"
+#include "floorgrid/io/scans_csv.hpp"
 #include "floorgrid/mapping/model_selection.hpp"
 
 namespace floorgrid::io {
@@ -149,6 +150,8 @@ AlignmentFiles write_alignment(const Alignment& a, const AlignmentInputs& in,
   AlignmentFiles files{folder, {}};
   write_pairs_csv(a.localization.pairs, folder / "pairs.csv");
   files.files.emplace_back("pairs.csv");
+  write_scans_csv(a.localization, in.log, folder / "scans.csv");
+  files.files.emplace_back("scans.csv");
   const RgbImage background = grid_picture(in.gridmap);
   for (const ModelAlignment& m : a.models) {
     if (!m.report.model)

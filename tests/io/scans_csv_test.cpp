@@ -1,0 +1,62 @@
+#include "floorgrid/io/scans_csv.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "tests/support/test_data.hpp"
+
+namespace floorgrid::io {
+namespace {
+
+std::vector<std::string> lines_of(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);)
+    lines.push_back(line);
+  return lines;
+}
+
+TEST(ScansCsv, OneRowPerScanWithEachFiltersPoseStateAndFit) {
+  RobotLog log;
+  log.scans.resize(2);
+  log.scans[0].timestamp = 10.5;
+  log.scans[1].timestamp = 11.25;
+  DualLocalization l;
+  l.scans.resize(2);
+  l.scans[0].scan = 0;
+  l.scans[0].plan.state = FilterState::global;
+  l.scans[0].plan.fit = std::numeric_limits<double>::quiet_NaN();
+  l.scans[0].grid.state = FilterState::global;
+  l.scans[0].grid.fit = 0.125;
+  l.scans[1].scan = 1;
+  l.scans[1].plan.state = FilterState::tracking;
+  l.scans[1].plan.converged = true;
+  l.scans[1].plan.pose = {1.5, -2.0, 0.25};
+  l.scans[1].plan.fit = 0.75;
+  l.scans[1].plan.estimate.scale = 1.5;
+  l.scans[1].grid.state = FilterState::recovering;
+  l.scans[1].grid.pose = {3.0, 4.0, -1.0};
+  l.scans[1].grid.fit = 0.5;
+  l.scans[1].consistent = false;
+  l.scans[1].pairs = 17;
+  test::TempDir dir;
+  write_scans_csv(l, log, dir / "scans.csv");
+  const std::vector<std::string> lines = lines_of(dir / "scans.csv");
+  ASSERT_EQ(lines.size(), 3u);
+  EXPECT_EQ(lines[0],
+            "scan,time,plan_x,plan_y,plan_theta,plan_state,plan_converged,plan_fit,plan_scale,"
+            "grid_x,grid_y,grid_theta,grid_state,grid_converged,grid_fit,grid_scale,consistent,"
+            "pairs");
+  // No fit where the map could not tell.
+  EXPECT_EQ(lines[1], "0,10.5,0,0,0,global,0,,1,0,0,0,global,0,0.1250,1,1,0");
+  EXPECT_EQ(lines[2],
+            "1,11.25,1.5,-2,0.25,tracking,1,0.7500,1.5,3,4,-1,recovering,0,0.5000,1,0,17");
+}
+
+}  // namespace
+}  // namespace floorgrid::io
