@@ -497,15 +497,6 @@ void visit(OptionVisitor& v, VisibleWallsOptions& o) {
           {.unit = "m",
            .doc = "A wall cell is visible when free room space lies within this distance",
            .choices = {}});
-  v.field("enclosure_range", o.enclosure_range,
-          {.unit = "m",
-           .doc = "Flooded free space is inside all the same where walls surround it within this "
-                  "distance",
-           .choices = {}});
-  v.field("enclosing_directions", o.enclosing_directions,
-          {.unit = "",
-           .doc = "Of 8 directions, how many must meet a wall for that (9: never)",
-           .choices = {}});
 }
 
 void visit(OptionVisitor& v, FilterRunnerOptions& o) {

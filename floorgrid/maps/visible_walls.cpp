@@ -1,20 +1,13 @@
 #include "floorgrid/maps/visible_walls.hpp"
 
-#include <algorithm>
-#include <cmath>
 #include <cstdint>
 #include <deque>
-#include <numbers>
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
 namespace floorgrid {
 
 namespace {
-
-/// Metres: walls grown by this for the enclosure's rays, so that they do not slip through the
-/// gaps of a wall drawn dotted or dashed.
-constexpr double kSolidWallGrowth = 0.15;
 
 /// Breadth-first fill over 4-neighbours from the cells marked in `seeds` through the cells
 /// where `passable` holds.
@@ -64,61 +57,6 @@ cv::Mat distance_to(int w, int h, const std::vector<std::uint8_t>& targets) {
   return distance;
 }
 
-/// Of the cells marked in `candidates`, those that walls surround: from them, a ray in at least
-/// options.enclosing_directions of 8 directions meets a wall (a cell of `wall`: the walls grown
-/// so that a dotted stroke is solid) within options.enclosure_range. Judged on a lattice of
-/// about 0.25 m and spread to the cells around each lattice point.
-std::vector<std::uint8_t> enclosed(int w, int h, const std::vector<std::uint8_t>& wall,
-                                   const std::vector<std::uint8_t>& candidates, double resolution,
-                                   const VisibleWallsOptions& options) {
-  std::vector<std::uint8_t> result(candidates.size(), 0);
-  if (options.enclosing_directions > 8)
-    return result;
-  const int stride = std::max(1, static_cast<int>(std::lround(0.25 / resolution)));
-  const int range = static_cast<int>(std::lround(options.enclosure_range / resolution));
-  const auto is_wall = [&](int x, int y) {
-    return x >= 0 && y >= 0 && x < w && y < h && wall[static_cast<std::size_t>(y) * w + x];
-  };
-  // Whether the ray from (x, y) in direction (dx, dy) meets a wall; a diagonal step also looks
-  // at the two cells it passes between (a staircase wall has no diagonal gaps).
-  const auto meets_wall = [&](int x, int y, int dx, int dy) {
-    const int steps = dx != 0 && dy != 0 ? static_cast<int>(range / std::numbers::sqrt2) : range;
-    for (int s = 1; s <= steps; ++s) {
-      const int px = x + s * dx, py = y + s * dy;
-      if (px < 0 || py < 0 || px >= w || py >= h)
-        return false;
-      if (is_wall(px, py) || (dx != 0 && dy != 0 && (is_wall(px - dx, py) || is_wall(px, py - dy))))
-        return true;
-    }
-    return false;
-  };
-  for (int y0 = 0; y0 < h; y0 += stride) {
-    for (int x0 = 0; x0 < w; x0 += stride) {
-      const int x = std::min(w - 1, x0 + stride / 2), y = std::min(h - 1, y0 + stride / 2);
-      bool any = false;
-      for (int yy = y0; yy < std::min(h, y0 + stride) && !any; ++yy) {
-        for (int xx = x0; xx < std::min(w, x0 + stride) && !any; ++xx)
-          any = candidates[static_cast<std::size_t>(yy) * w + xx] != 0;
-      }
-      if (!any)
-        continue;
-      int directions = 0;
-      for (int dy = -1; dy <= 1; ++dy) {
-        for (int dx = -1; dx <= 1; ++dx)
-          directions += (dx != 0 || dy != 0) && meets_wall(x, y, dx, dy);
-      }
-      if (directions < options.enclosing_directions)
-        continue;
-      for (int yy = y0; yy < std::min(h, y0 + stride); ++yy) {
-        for (int xx = x0; xx < std::min(w, x0 + stride); ++xx)
-          result[static_cast<std::size_t>(yy) * w + xx] =
-              candidates[static_cast<std::size_t>(yy) * w + xx];
-      }
-    }
-  }
-  return result;
-}
-
 }  // namespace
 
 VisibleWalls visible_walls(const OccupancyGrid& plan, const VisibleWallsOptions& options) {
@@ -162,13 +100,6 @@ VisibleWalls visible_walls(const OccupancyGrid& plan, const VisibleWallsOptions&
     if (!wall[i] && d <= options.gap_closing + resolution)
       outside[i] = 1;
   }
-  // Where the flood got in through an opening the drawing left, walls still surround it.
-  std::vector<std::uint8_t> solid(n, 0);
-  for (std::size_t i = 0; i < n; ++i)
-    solid[i] = wall_distance(i) <= kSolidWallGrowth;
-  const std::vector<std::uint8_t> inside = enclosed(w, h, solid, outside, resolution, options);
-  for (std::size_t i = 0; i < n; ++i)
-    outside[i] = outside[i] && !inside[i];
   // Rooms: free space inside, flooded from the cells where a robot fits.
   std::vector<std::uint8_t> roomy(n, 0);
   for (std::size_t i = 0; i < n; ++i)

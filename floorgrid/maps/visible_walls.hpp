@@ -17,12 +17,6 @@ struct VisibleWallsOptions {
   double min_clearance = 0.3;
   /// Metres: a wall cell is visible when free room space lies within this distance.
   double reach = 0.1;
-  /// Metres: free space the outside floods into is the building's inside all the same where
-  /// walls surround it: a ray in at least `enclosing_directions` of 8 directions meets a wall
-  /// within this distance (a corridor whose end the drawing leaves open, a gappy outline).
-  double enclosure_range = 15.0;
-  /// Of the 8 directions (every 45 degrees), how many must meet a wall (1-8; 9: never).
-  int enclosing_directions = 7;
 };
 
 /// What visible_walls found.
@@ -39,9 +33,9 @@ struct VisibleWalls {
 /// lines; a laser only ever meets the face towards the room, but a likelihood field or a scan
 /// matcher would as gladly put the endpoints on the far face (the outline's outer line, a
 /// wall's hollow), which shifts the robot by a wall's thickness. This finds the rooms (free
-/// space not connected to the outside, or surrounded by walls, with room for a robot) and keeps
-/// only the wall cells within `reach` of them; the others become unknown. A plan without an
-/// inside is returned unchanged. O(cells).
+/// space not connected to the outside, with room for a robot) and keeps only the wall cells
+/// within `reach` of them; the others become unknown. A plan without an inside (an outline
+/// left open) is returned unchanged. O(cells).
 VisibleWalls visible_walls(const OccupancyGrid& plan, const VisibleWallsOptions& options = {});
 
 }  // namespace floorgrid

@@ -49,40 +49,6 @@ TEST(VisibleWalls, TheOuterFaceOfAWallDrawnAsTwoLinesIsDropped) {
   EXPECT_NEAR(room_area, 9.4 * 7.4, 2.0);
 }
 
-TEST(VisibleWalls, AnOutlineLeftOpenStillHasItsInside) {
-  // A 20 m x 10 m hall drawn with two lines 0.3 m apart, its left wall open over 3 m (wider than
-  // a door: the outside floods in), and a corridor 1.5 m wide along its top, open at its end.
-  VectorFloorplan plan;
-  const auto wall_with_gap = [&](double inset) {
-    plan.add_segment({inset, inset}, {20.0 - inset, inset}, "W");
-    plan.add_segment({20.0 - inset, inset}, {20.0 - inset, 10.0 - inset}, "W");
-    plan.add_segment({20.0 - inset, 10.0 - inset}, {inset, 10.0 - inset}, "W");
-    plan.add_segment({inset, 10.0 - inset}, {inset, 6.5}, "W");
-    plan.add_segment({inset, 3.5}, {inset, inset}, "W");
-  };
-  wall_with_gap(0.0);
-  wall_with_gap(0.3);
-  plan.add_segment({0.3, 8.5}, {16.0, 8.5}, "W");
-  const OccupancyGrid grid = raster(plan);
-  const VisibleWalls visible = visible_walls(grid);
-  ASSERT_TRUE(visible.applied);
-  // Walls surround the hall and the corridor: their faces stay walls, the outer faces go.
-  EXPECT_EQ(state_at(visible.grid, 10.0, 0.3), CellState::occupied);
-  EXPECT_EQ(state_at(visible.grid, 19.7, 5.0), CellState::occupied);
-  EXPECT_EQ(state_at(visible.grid, 10.0, 8.5), CellState::occupied);
-  EXPECT_EQ(state_at(visible.grid, 10.0, 9.7), CellState::occupied);
-  EXPECT_EQ(state_at(visible.grid, 10.0, 0.0), CellState::unknown);
-  EXPECT_EQ(state_at(visible.grid, 20.0, 5.0), CellState::unknown);
-  // The hall is a room, the outside is not.
-  EXPECT_GT(static_cast<double>(visible.room_cells) * 0.05 * 0.05, 0.9 * 19.4 * 7.9);
-  EXPECT_LT(static_cast<double>(visible.room_cells) * 0.05 * 0.05, 1.1 * 19.4 * 9.4);
-  // Told never to count walls all around as inside, the flood takes the hall and its walls go.
-  VisibleWallsOptions never;
-  never.enclosing_directions = 9;
-  const VisibleWalls flooded = visible_walls(grid, never);
-  EXPECT_FALSE(flooded.applied && state_at(flooded.grid, 10.0, 0.3) == CellState::occupied);
-}
-
 TEST(VisibleWalls, APlanWithoutAClosedInsideIsLeftAsItIs) {
   VectorFloorplan plan;
   plan.add_segment({0.0, 0.0}, {10.0, 0.0}, "W");
