@@ -497,6 +497,11 @@ void visit(OptionVisitor& v, VisibleWallsOptions& o) {
           {.unit = "m",
            .doc = "A wall cell is visible when free room space lies within this distance",
            .choices = {}});
+  v.field("max_thickness", o.max_thickness,
+          {.unit = "m",
+           .doc = "A wall cell beyond reach of every room is hidden only this close to one (a "
+                  "wall's far face); walls far from every room stay",
+           .choices = {}});
 }
 
 void visit(OptionVisitor& v, FilterRunnerOptions& o) {

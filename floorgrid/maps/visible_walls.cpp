@@ -117,7 +117,8 @@ VisibleWalls visible_walls(const OccupancyGrid& plan, const VisibleWallsOptions&
       const std::size_t i = static_cast<std::size_t>(y) * w + x;
       if (!wall[i])
         continue;
-      if (static_cast<double>(to_room.at<float>(y, x)) * resolution > options.reach) {
+      const double d = static_cast<double>(to_room.at<float>(y, x)) * resolution;
+      if (d > options.reach && d <= options.max_thickness) {
         result.grid.set_state(x, y, CellState::unknown);
         ++result.hidden;
       }

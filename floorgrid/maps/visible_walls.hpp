@@ -17,6 +17,11 @@ struct VisibleWallsOptions {
   double min_clearance = 0.3;
   /// Metres: a wall cell is visible when free room space lies within this distance.
   double reach = 0.1;
+  /// Metres: a wall cell farther than `reach` from every room is hidden only within this
+  /// distance of one: the far face of a wall whose near face bounds a room. Walls far from
+  /// every room stay: the outside may have flooded in through an opening the drawing left (a
+  /// corridor drawn open at its end, a gappy outline), and the robot sees those walls.
+  double max_thickness = 0.6;
 };
 
 /// What visible_walls found.
@@ -33,9 +38,9 @@ struct VisibleWalls {
 /// lines; a laser only ever meets the face towards the room, but a likelihood field or a scan
 /// matcher would as gladly put the endpoints on the far face (the outline's outer line, a
 /// wall's hollow), which shifts the robot by a wall's thickness. This finds the rooms (free
-/// space not connected to the outside, with room for a robot) and keeps only the wall cells
-/// within `reach` of them; the others become unknown. A plan without an inside (an outline
-/// left open) is returned unchanged. O(cells).
+/// space not connected to the outside, with room for a robot) and hides the wall cells beyond
+/// `reach` of them but within `max_thickness` (they become unknown). A plan without an inside (an
+/// outline left open) is returned unchanged. O(cells).
 VisibleWalls visible_walls(const OccupancyGrid& plan, const VisibleWallsOptions& options = {});
 
 }  // namespace floorgrid

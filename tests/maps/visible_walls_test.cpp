@@ -49,6 +49,27 @@ TEST(VisibleWalls, TheOuterFaceOfAWallDrawnAsTwoLinesIsDropped) {
   EXPECT_NEAR(room_area, 9.4 * 7.4, 2.0);
 }
 
+TEST(VisibleWalls, WallsFarFromEveryRoomStay) {
+  // The room of the first test, and 3 m beside it a corridor 1.5 m wide drawn open at both
+  // ends: the outside floods it, yet the robot walks there and sees its walls.
+  VectorFloorplan plan;
+  rectangle(plan, 0.0, 0.0, 10.0, 8.0);
+  rectangle(plan, 0.3, 0.3, 9.7, 7.7);
+  plan.add_segment({13.0, -2.0}, {13.0, 12.0}, "W");
+  plan.add_segment({14.5, -2.0}, {14.5, 12.0}, "W");
+  const OccupancyGrid grid = raster(plan);
+  const VisibleWalls visible = visible_walls(grid);
+  ASSERT_TRUE(visible.applied);
+  EXPECT_EQ(state_at(visible.grid, 13.0, 5.0), CellState::occupied);
+  EXPECT_EQ(state_at(visible.grid, 14.5, 5.0), CellState::occupied);
+  // The room's outer face still goes.
+  EXPECT_EQ(state_at(visible.grid, 10.0, 4.0), CellState::unknown);
+  // Hiding everything beyond reach of a room (the old rule) took the corridor's walls.
+  VisibleWallsOptions all;
+  all.max_thickness = 1e9;
+  EXPECT_EQ(state_at(visible_walls(grid, all).grid, 13.0, 5.0), CellState::unknown);
+}
+
 TEST(VisibleWalls, APlanWithoutAClosedInsideIsLeftAsItIs) {
   VectorFloorplan plan;
   plan.add_segment({0.0, 0.0}, {10.0, 0.0}, "W");
