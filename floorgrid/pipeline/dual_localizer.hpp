@@ -161,12 +161,13 @@ struct DualCheckOptions {
   std::size_t local_window = 50;
   std::size_t local_min_pairs = 10;
   std::size_t local_max_age = 150;
-  /// Plan metres and radians: a plan pose farther than this from where the local registration
-  /// puts the gridmap filter's pose disagrees, and its scan makes no pairs. Allows for a plan
-  /// drawn wrong by up to a metre, not for a filter turned the wrong way in a cluttered room.
+  /// Metres (world: plan metres times the plan's scale) and radians: a plan pose farther than
+  /// this from where the local registration puts the gridmap filter's pose disagrees, and its scan
+  /// makes no pairs. Allows for a plan drawn wrong by up to a metre, not for a filter turned the
+  /// wrong way in a cluttered room.
   double local_distance = 1.0;
   double local_heading = 0.12;  ///< radians
-  /// The plan filter is re-initialized when it disagrees by more than this (plan metres and
+  /// The plan filter is re-initialized when it disagrees by more than this (world metres and
   /// radians) for consistency_scans scans: against the local registration when it is fresh...
   double local_reinitialize_distance = 2.0;
   double local_reinitialize_heading = 0.3;  ///< radians
@@ -184,7 +185,7 @@ struct DualCheckOptions {
   /// is converged is re-initialized at once where the gridmap filter says, instead of
   /// searching the plan by itself (a plan's look-alike rooms and corridors lure it away).
   bool restart_when_lost = true;
-  /// Plan metres and radians: the re-initialized cloud's spread around the pose the local
+  /// World metres and radians: the re-initialized cloud's spread around the pose the local
   /// registration gives...
   double local_reinitialize_sigma = 0.3;
   double local_reinitialize_heading_sigma = 0.1;  ///< radians

@@ -17,7 +17,9 @@ std::optional<PlanRestart> DualCheck::judge(std::size_t scan, ScanRecord& record
   const Pose2 grid_pose = grid.matched ? grid.match.pose : grid.pose;
   const Pose2 expected = near ? local_.plan_pose(grid_pose) : global_.plan_pose(grid_pose);
   const Pose2 plan_pose = plan.matched ? plan.match.pose : plan.pose;
-  const double off = (plan_pose.translation() - expected.translation()).norm();
+  // World metres (plan metres times the scale): the tolerances are about the robot and its
+  // laser, whatever units or scale the plan is drawn in.
+  const double off = (plan_pose.translation() - expected.translation()).norm() * scale_;
   const double turned = std::abs(normalize_angle(plan_pose.theta - expected.theta));
   record.consistent =
       near ? off <= options_.local_distance && turned <= options_.local_heading
@@ -46,7 +48,8 @@ std::optional<PlanRestart> DualCheck::judge(std::size_t scan, ScanRecord& record
                 : disagreeing_ >= options_.consistency_scans ? "inconsistent"
                                                              : "unconverged",
       .start = plan_start(
-          expected, near ? options_.local_reinitialize_sigma : options_.reinitialize_sigma,
+          expected,
+          (near ? options_.local_reinitialize_sigma : options_.reinitialize_sigma) / scale_,
           near ? options_.local_reinitialize_heading_sigma : options_.reinitialize_heading_sigma,
           scale_, 0.0)};
   disagreeing_ = unconverged_ = 0;
