@@ -77,9 +77,11 @@ void add_fit_command(CLI::App& root) {
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   cmd->add_option("--cv-kind", args->cv_kind,
-                  "folds of whole spatial blocks (blocked: the error away from the pairs) or of "
-                  "pairs dealt at random (random); also how auto compares its candidates")
-      ->check(CLI::IsMember({"blocked", "random"}))
+                  "folds of whole spatial blocks (blocked: the error away from the pairs), of "
+                  "pairs dealt at random (random), or of stretches of the pairs in their order "
+                  "(runs: pairs from `pairs`, in scan order); also how auto compares its "
+                  "candidates")
+      ->check(CLI::IsMember({"blocked", "random", "runs"}))
       ->capture_default_str();
   cmd->add_option("--cv-block", args->options.auto_select.cv.block_size,
                   "metres, side of the blocks of blocked folds (0: chosen from the pairs)")
@@ -113,8 +115,7 @@ void add_fit_command(CLI::App& root) {
     if (!(args->memory_limit_gb > 0.0 && args->memory_limit_gb < 1e6))
       throw InputError("must be a positive number of GiB", {}, 0, "--memory-limit");
     CrossValidationOptions& cv = args->options.auto_select.cv;
-    cv.kind =
-        args->cv_kind == "random" ? CrossValidationKind::random : CrossValidationKind::blocked;
+    cv.kind = parse_cv_kind(args->cv_kind);
     if (!(cv.block_size >= 0.0 && cv.block_size <= kMaxCoordinate)) {
       throw InputError(fmt::format("must be 0 (chosen from the pairs) or a size in metres (got {})",
                                    cv.block_size),

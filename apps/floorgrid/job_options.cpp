@@ -17,9 +17,11 @@ void add_job_options(CLI::App* cmd, const std::shared_ptr<JobArgs>& args, bool w
     cmd->add_option("--cv", args->cv, "k of each model's k-fold cross-validation (0: none)")
         ->check(CLI::NonNegativeNumber);
     cmd->add_option("--cv-kind", args->cv_kind,
-                    "folds of whole spatial blocks (blocked: the error away from the pairs, "
-                    "default) or of pairs dealt at random (random)")
-        ->check(CLI::IsMember({"blocked", "random"}));
+                    "how auto compares the models: folds of stretches of the run (runs: "
+                    "each predicted from the other passes, default), of whole spatial blocks "
+                    "(blocked: the error away from the pairs) or of pairs dealt at random "
+                    "(random); each model's std_m is fitted on blocked folds unless random")
+        ->check(CLI::IsMember({"blocked", "random", "runs"}));
     cmd->add_option("--cv-block", args->cv_block,
                     "metres, side of the blocks of blocked folds (default 0: chosen from the "
                     "pairs)");
@@ -41,8 +43,7 @@ JobOptions job_options(const JobArgs& args) {
   }
   CrossValidationOptions& cv = options.align.models.mapping.auto_select.cv;
   if (args.cv_kind)
-    cv.kind =
-        *args.cv_kind == "random" ? CrossValidationKind::random : CrossValidationKind::blocked;
+    cv.kind = parse_cv_kind(*args.cv_kind);
   if (args.cv_block) {
     if (!(*args.cv_block >= 0.0 && *args.cv_block <= kMaxCoordinate))
       throw InputError("must be 0 (chosen from the pairs) or a size in metres", {}, 0,

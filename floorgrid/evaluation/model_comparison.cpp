@@ -1,5 +1,6 @@
 #include "floorgrid/evaluation/model_comparison.hpp"
 
+#include <algorithm>
 #include <chrono>
 
 #include "floorgrid/core/error.hpp"
@@ -8,6 +9,12 @@
 #include <map>
 
 namespace floorgrid {
+
+MappingOptions run_mapping_defaults() {
+  MappingOptions options;
+  options.auto_select.cv.kind = CrossValidationKind::runs;
+  return options;
+}
 
 std::vector<ModelReport> compare_models(const ReferencePairs& pairs, const EvaluationDomain& domain,
                                         const std::optional<GroundTruth>& truth,
@@ -22,7 +29,11 @@ std::vector<ModelReport> compare_models(const ReferencePairs& pairs, const Evalu
   for (std::size_t k = 0; k < options.models.size(); ++k)
     if (options.models[k] == "auto")
       order.push_back(k);
-  std::map<std::string, CrossValidationResult> cross_validated;
+  // Each model's own cross-validation (its cv_error_m and std_m: blocked, or random when auto
+  // compares so) and, when auto compares by runs, its candidates' runs.
+  const CrossValidationKind auto_kind = options.mapping.auto_select.cv.kind;
+  const std::vector<std::string> candidates = options.mapping.auto_select.candidates;
+  std::map<std::string, CrossValidationResult> cross_validated, by_runs;
   for (std::size_t done = 0; done < order.size(); ++done) {
     const std::size_t k = order[done];
     const std::string& name = options.models[k];
@@ -36,16 +47,23 @@ std::vector<ModelReport> compare_models(const ReferencePairs& pairs, const Evalu
       auto model = make_mapping(mapping);
       if (auto* chooser = dynamic_cast<AutoMapping*>(model.get());
           chooser && options.cv_folds == mapping.auto_select.cv.folds) {
-        chooser->reuse_cross_validation(cross_validated);
+        chooser->reuse_cross_validation(auto_kind == CrossValidationKind::runs ? by_runs
+                                                                               : cross_validated);
+        chooser->reuse_blocked_cross_validation(cross_validated);
       }
       report.summary = model->fit(pairs);
       if (options.cv_folds >= 2 && name == "auto") {
         report.summary.cv_error_m = model->summary().cv_error_m;
         report.summary.cv = model->summary().cv;
       } else if (options.cv_folds >= 2) {
-        // The same kind, blocks and pair budget as auto's, so that auto can reuse the result.
+        // The same blocks and pair budget as auto's, so that auto can reuse the result.
         CrossValidationOptions cv = mapping.auto_select.cv;
         cv.folds = options.cv_folds;
+        if (auto_kind == CrossValidationKind::runs) {
+          if (std::find(candidates.begin(), candidates.end(), name) != candidates.end())
+            by_runs[name] = cross_validate(mapping, pairs, cv);
+          cv.kind = CrossValidationKind::blocked;
+        }
         const CrossValidationResult r = cross_validate(mapping, pairs, cv);
         model->set_cv_error(r.mean_error_m, r.method);
         model->set_error_model(fit_error_model(r.held_out, mapping.uncertainty));

@@ -27,14 +27,20 @@ struct ModelReport {
   double evaluate_seconds = 0.0;  ///< time of the judging
 };
 
+/// The models' options in `align`: MappingOptions' defaults, except that auto compares its
+/// candidates by runs (align's pairs are in scan order; CrossValidationKind::runs).
+MappingOptions run_mapping_defaults();
+
 /// Which models are fitted and how they are judged.
 struct ModelComparisonOptions {
   /// The models fitted (SPEC: at least gt, gp, gpgt, ct, dt, tps, lc, auto).
   std::vector<std::string> models = {"lc", "gt",   "gt-rigid", "gt-affine", "ct",
                                      "gp", "gpgt", "dt",       "tps",       "auto"};
-  MappingOptions mapping;  ///< options of every model (`model` is set per model)
-  /// k-fold cross-validation of each model (0: none); its kind, blocks and pair budget are
-  /// mapping.auto_select.cv's, so that auto reuses the results when the folds agree.
+  MappingOptions mapping = run_mapping_defaults();  ///< every model's (`model` set per model)
+  /// k-fold cross-validation of each model (0: none); its blocks and pair budget are
+  /// mapping.auto_select.cv's, so that auto reuses the results when the folds agree, and its
+  /// kind too, except that auto's runs are cross-validated besides blocked folds (the models'
+  /// cv_error_m and std_m stay those of blocked folds).
   int cv_folds = 5;
   int back_and_forth_rounds = 100;          ///< thesis 6.5
   std::size_t back_and_forth_points = 300;  ///< domain points followed

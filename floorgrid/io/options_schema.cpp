@@ -73,9 +73,12 @@ void visit(OptionVisitor& v, CrossValidationOptions& o) {
            .doc = "Pairs binned down to this before the folds (cost bound)",
            .choices = {}});
   enum_field(v, "kind", o.kind,
-             {{"blocked", CrossValidationKind::blocked}, {"random", CrossValidationKind::random}},
-             "Folds of whole square blocks of the grid frame (the error away from the pairs), or "
-             "pairs dealt at random (near-copies stay in training)");
+             {{"blocked", CrossValidationKind::blocked},
+              {"random", CrossValidationKind::random},
+              {"runs", CrossValidationKind::runs}},
+             "Folds of whole square blocks of the grid frame (the error away from the pairs), "
+             "pairs dealt at random (near-copies stay in training), or stretches of the pairs in "
+             "their order (a run's pairs: each stretch predicted from the other passes)");
   v.field("block_size", o.block_size,
           {.unit = "m",
            .doc = "Side of the blocks of blocked folds (0: a few metres, chosen from the "

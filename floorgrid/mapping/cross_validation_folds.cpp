@@ -119,6 +119,20 @@ Folds blocked_folds(const Eigen::Matrix2Xd& points, std::size_t folds, double bl
   return result;
 }
 
+Folds run_folds(std::size_t n, std::size_t folds, std::size_t runs_per_fold) {
+  assert(folds >= 1 && runs_per_fold >= 1);
+  Folds result;
+  result.count = std::min(folds, n);
+  result.fold_of.resize(n);
+  result.order.resize(n);
+  const std::size_t runs = result.count * runs_per_fold;
+  for (std::size_t i = 0; i < n; ++i) {
+    result.order[i] = i;
+    result.fold_of[i] = std::min(i * runs / n, runs - 1) % result.count;
+  }
+  return result;
+}
+
 double choose_block_size(const Eigen::Matrix2Xd& points, std::size_t folds) {
   const double smallest = 2.0 * median_neighbour_distance(points);
   const std::size_t wanted = kAutoBlocksPerFold * std::max<std::size_t>(folds, 1);

@@ -36,6 +36,15 @@ Folds random_folds(std::size_t n, std::size_t folds, std::uint64_t seed);
 Folds blocked_folds(const Eigen::Matrix2Xd& points, std::size_t folds, double block_size,
                     std::uint64_t seed);
 
+/// Folds of runs: the n pairs, in their order, cut into folds x runs_per_fold stretches of
+/// (nearly) equal length, stretch s going to fold s mod folds (min(folds, n) folds). Pairs in
+/// scan order share their errors along a stretch of the run (the filters' pose errors); held
+/// out whole, each stretch is predicted from the other passes and stretches only.
+Folds run_folds(std::size_t n, std::size_t folds, std::size_t runs_per_fold);
+
+/// Stretches per fold of run_folds as cross-validation deals them.
+inline constexpr std::size_t kRunsPerFold = 3;
+
 /// The block side blocked_folds uses when none is given: kLargestAutoBlock metres, shrunk (by
 /// 0.8 each step) until the points fill at least kAutoBlocksPerFold blocks per fold, but never
 /// below twice the median distance between neighbouring points (density), so a block always

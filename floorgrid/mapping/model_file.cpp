@@ -198,8 +198,8 @@ std::size_t summary_count(const Value& object, const std::string& key, const std
 CrossValidationRecord cv_record(const Value& cv, const std::string& where) {
   CrossValidationRecord record;
   record.kind = text(member(cv, "kind", where, "fit.cv."), where, "fit.cv.kind");
-  if (record.kind != "blocked" && record.kind != "random") {
-    throw InputError("must be blocked or random (got " + record.kind + ")", where, 0,
+  if (record.kind != "blocked" && record.kind != "random" && record.kind != "runs") {
+    throw InputError("must be blocked, random or runs (got " + record.kind + ")", where, 0,
                      "fit.cv.kind");
   }
   record.folds = summary_count(cv, "folds", where, "fit.cv.");

@@ -14,7 +14,24 @@
 namespace floorgrid {
 
 const char* to_string(CrossValidationKind kind) {
-  return kind == CrossValidationKind::blocked ? "blocked" : "random";
+  switch (kind) {
+    case CrossValidationKind::blocked:
+      return "blocked";
+    case CrossValidationKind::random:
+      return "random";
+    case CrossValidationKind::runs:
+      return "runs";
+  }
+  return "blocked";
+}
+
+CrossValidationKind parse_cv_kind(const std::string& name, const std::string& field) {
+  for (const auto kind :
+       {CrossValidationKind::blocked, CrossValidationKind::random, CrossValidationKind::runs}) {
+    if (name == to_string(kind))
+      return kind;
+  }
+  throw InputError("must be blocked, random or runs (got " + name + ")", {}, 0, field);
 }
 
 void validate(const CrossValidationOptions& cv, const std::string& prefix) {
@@ -32,6 +49,8 @@ Folds deal_folds(const ReferencePairs& pairs, const CrossValidationOptions& cv,
   const auto folds = static_cast<std::size_t>(cv.folds);
   if (cv.kind == CrossValidationKind::random)
     return random_folds(static_cast<std::size_t>(pairs.size()), folds, seed);
+  if (cv.kind == CrossValidationKind::runs)
+    return run_folds(static_cast<std::size_t>(pairs.size()), folds, kRunsPerFold);
   const double size =
       cv.block_size > 0.0 ? cv.block_size : choose_block_size(pairs.points_in_grid, folds);
   return blocked_folds(pairs.points_in_grid, folds, size, seed);
@@ -45,7 +64,10 @@ CrossValidationResult cross_validate(const MappingOptions& options, const Refere
   validate_pairs(given);
   ReductionOptions budget;
   budget.budget = std::max<std::size_t>(cv.max_pairs, 3);
-  const ReferencePairs pairs = reduce_pairs(merge_duplicates(given), budget);
+  // Runs keep the pairs' order: thinned evenly along it, not binned in space.
+  const ReferencePairs pairs = cv.kind == CrossValidationKind::runs
+                                   ? thin_in_order(given, budget.budget)
+                                   : reduce_pairs(merge_duplicates(given), budget);
   const auto n = static_cast<std::size_t>(pairs.size());
   CrossValidationResult result;
   result.pairs = n;
@@ -160,7 +182,15 @@ void AutoMapping::fit_model(const ReferencePairs& pairs, FitSummary& summary) {
   chosen_ = make_mapping(chosen);
   const FitSummary inner = chosen_->fit(pairs);
   chosen_->set_cv_error(best_error, best_method);
-  // The chosen model's std_m, from its own held-out errors.
+  // The chosen model's std_m, from its own held-out errors: of blocked folds (the error away
+  // from the pairs) when the candidates were compared by runs.
+  if (options_->auto_select.cv.kind == CrossValidationKind::runs) {
+    const auto known = known_blocked_.find(best);
+    CrossValidationOptions blocked = options_->auto_select.cv;
+    blocked.kind = CrossValidationKind::blocked;
+    best_held_out = known != known_blocked_.end() ? known->second.held_out
+                                                  : cross_validate(chosen, pairs, blocked).held_out;
+  }
   chosen_->set_error_model(fit_error_model(best_held_out, options_->uncertainty));
   set_error_model(chosen_->error_model());
   summary.rms_m = inner.rms_m;

@@ -17,10 +17,16 @@ struct MappingOptions;
 enum class CrossValidationKind {
   blocked,  ///< whole spatial blocks held out: the error away from the pairs
   random,   ///< pairs dealt at random: near-copies of a held-out pair stay in training
+  /// stretches of the pairs in their own order held out (a run's pairs, in scan order: the
+  /// pairs of one stretch of the run share their errors, so the held-out pairs are predicted
+  /// from other passes and other stretches, not from their own scans' siblings)
+  runs,
 };
 
-/// The name of a kind as options and outputs spell it: "blocked" or "random".
+/// The name of a kind as options and outputs spell it: "blocked", "random" or "runs".
 const char* to_string(CrossValidationKind kind);
+/// The kind `name` spells; throws InputError naming `field` for another name.
+CrossValidationKind parse_cv_kind(const std::string& name, const std::string& field = "--cv-kind");
 
 /// How models are cross-validated.
 struct CrossValidationOptions {
@@ -96,6 +102,12 @@ class AutoMapping : public PointMapping {
   void reuse_cross_validation(std::map<std::string, CrossValidationResult> results) {
     known_ = std::move(results);
   }
+  /// Blocked cross-validations already computed (same folds, budget and seed) for some
+  /// candidates: when auto compares by runs, the chosen model's std_m is fitted on its blocked
+  /// held-out errors, from these instead of cross-validating again.
+  void reuse_blocked_cross_validation(std::map<std::string, CrossValidationResult> results) {
+    known_blocked_ = std::move(results);
+  }
   /// The model chosen (after fit or load).
   const PointMapping& chosen() const { return *chosen_; }
   /// Cross-validated mean error per candidate, metres (infinite: could not be fitted).
@@ -110,6 +122,7 @@ class AutoMapping : public PointMapping {
   std::unique_ptr<MappingOptions> options_;
   std::unique_ptr<PointMapping> chosen_;
   std::map<std::string, CrossValidationResult> known_;
+  std::map<std::string, CrossValidationResult> known_blocked_;
   std::map<std::string, double> table_;
 };
 

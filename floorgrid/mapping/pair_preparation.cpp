@@ -219,6 +219,16 @@ ReferencePairs reduce_pairs(const ReferencePairs& pairs, const ReductionOptions&
   return out;
 }
 
+ReferencePairs thin_in_order(const ReferencePairs& pairs, std::size_t budget) {
+  const auto n = static_cast<std::size_t>(pairs.size());
+  if (n <= budget || budget == 0)
+    return pairs;
+  std::vector<Eigen::Index> kept(budget);
+  for (std::size_t k = 0; k < budget; ++k)
+    kept[k] = static_cast<Eigen::Index>(k * n / budget);
+  return select_pairs(pairs, kept);
+}
+
 double plan_extent(const ReferencePairs& pairs) {
   if (pairs.empty())
     return 0.0;

@@ -45,6 +45,10 @@ struct ReductionSummary {
 ReferencePairs reduce_pairs(const ReferencePairs& pairs, const ReductionOptions& options,
                             ReductionSummary* summary = nullptr);
 
+/// At most `budget` of the pairs, evenly spread along their order (every k-th, k fractional),
+/// in that order, with their weights; all of them when within the budget.
+ReferencePairs thin_in_order(const ReferencePairs& pairs, std::size_t budget);
+
 /// Axis-aligned extent of the plan points: the length of the bounds' diagonal, metres.
 double plan_extent(const ReferencePairs& pairs);
 

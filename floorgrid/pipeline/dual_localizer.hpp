@@ -163,9 +163,11 @@ struct DualCheckOptions {
   std::size_t local_max_age = 150;
   /// Metres (world: plan metres times the plan's scale) and radians: a plan pose farther than
   /// this from where the local registration puts the gridmap filter's pose disagrees, and its scan
-  /// makes no pairs. Allows for a plan drawn wrong by up to a metre, not for a filter turned the
-  /// wrong way in a cluttered room.
-  double local_distance = 1.0;
+  /// makes no pairs. The local registration (the last scans' similarity) already follows a plan
+  /// drawn wrong by up to a metre over the building; half a metre more is a filter slipped along
+  /// a corridor (ACES and Orebro: 0.5-0.8 m for 10-40 scans), or turned the wrong way in a
+  /// cluttered room.
+  double local_distance = 0.5;
   double local_heading = 0.12;  ///< radians
   /// The plan filter is re-initialized when it disagrees by more than this (world metres and
   /// radians) for consistency_scans scans: against the local registration when it is fresh...

@@ -13,6 +13,7 @@
 #include "floorgrid/mapping/cross_validation_folds.hpp"
 #include "floorgrid/mapping/mapping_factory.hpp"
 #include "floorgrid/mapping/model_selection.hpp"
+#include "floorgrid/mapping/pair_preparation.hpp"
 #include "tests/mapping/mapping_test_data.hpp"
 #include "tests/support/expect_error.hpp"
 
@@ -203,6 +204,92 @@ TEST(BlockedCrossValidation, AutoPicksTheTruthWhereRandomFoldsPickTheInterpolato
   random->fit(c.pairs);
   EXPECT_EQ(random->summary().details.find("chosen")->as_string(), "dt");
   EXPECT_EQ(random->summary().cv->kind, "random");
+}
+
+TEST(RunFolds, StretchesOfThePairsOrderTakeTurnsInTheFolds) {
+  const Folds folds = run_folds(1000, 5, 3);
+  ASSERT_EQ(folds.count, 5u);
+  ASSERT_EQ(folds.fold_of.size(), 1000u);
+  // 15 stretches of 66-67 pairs: pair i in stretch floor(15 i / 1000), its fold that mod 5.
+  std::size_t changes = 0;
+  for (std::size_t i = 0; i < 1000; ++i) {
+    EXPECT_EQ(folds.fold_of[i], (15 * i / 1000) % 5) << i;
+    changes += i > 0 && folds.fold_of[i] != folds.fold_of[i - 1];
+  }
+  EXPECT_EQ(changes, 14u);
+  EXPECT_EQ(run_folds(3, 5, 3).count, 3u);
+}
+
+TEST(ThinInOrder, KeepsEvenlySpreadPairsInTheirOrder) {
+  const ReferencePairs pairs =
+      test::make_pairs(test::random_points(1000, 3), test::similarity(0.1, 1.0, {1, 2}), 0.0, 4);
+  const ReferencePairs thin = thin_in_order(pairs, 300);
+  ASSERT_EQ(thin.size(), 300);
+  for (Eigen::Index k = 0; k < 300; ++k)
+    EXPECT_EQ(thin.points_in_plan.col(k), pairs.points_in_plan.col(k * 1000 / 300)) << k;
+  EXPECT_EQ(thin_in_order(pairs, 2000).size(), 1000);
+}
+
+/// A run's pairs: a robot passing twice along a 40 m loop of corridor, 20 pairs a scan every
+/// 0.5 m, the grid the plan through a similarity, each pair off by its scan's pose error. The
+/// pose error wanders (a random walk of 2 cm a scan, as the filters' errors drift along a run)
+/// and the two passes' errors are independent. The truth is the similarity: a model that bends
+/// to follow one pass's error is wrong by it, on the walls both passes saw.
+ReferencePairs two_passes() {
+  Random random(8);
+  const test::Truth truth = test::similarity(0.3, 1.2, {2.0, -1.0});
+  std::vector<Eigen::Vector2d> plan, grid;
+  for (int pass = 0; pass < 2; ++pass) {
+    Eigen::Vector2d error = Eigen::Vector2d::Zero();
+    for (int scan = 0; scan < 80; ++scan) {
+      error += Eigen::Vector2d(random.normal(0.02), random.normal(0.02));
+      error *= 0.95;                // it stays bounded, about 7 cm
+      const double u = 0.5 * scan;  // metres along the loop: a 10 m x 10 m square
+      const double along = std::fmod(u + 0.25 * pass, 40.0);
+      Eigen::Vector2d robot = along < 10   ? Eigen::Vector2d(along, 0.0)
+                              : along < 20 ? Eigen::Vector2d(10.0, along - 10.0)
+                              : along < 30 ? Eigen::Vector2d(30.0 - along, 10.0)
+                                           : Eigen::Vector2d(0.0, 40.0 - along);
+      for (int k = 0; k < 20; ++k) {
+        // Walls 1 m either side of the corridor, seen up to 2 m ahead and behind.
+        const Eigen::Vector2d p =
+            robot + Eigen::Vector2d(random.uniform(-2.0, 2.0), k % 2 == 0 ? -1.0 : 1.0);
+        plan.push_back(p);
+        grid.push_back(truth(p) + error +
+                       Eigen::Vector2d(random.normal(0.005), random.normal(0.005)));
+      }
+    }
+  }
+  ReferencePairs pairs;
+  pairs.points_in_plan.resize(2, static_cast<Eigen::Index>(plan.size()));
+  pairs.points_in_grid.resize(2, static_cast<Eigen::Index>(grid.size()));
+  for (std::size_t i = 0; i < plan.size(); ++i) {
+    pairs.points_in_plan.col(static_cast<Eigen::Index>(i)) = plan[i];
+    pairs.points_in_grid.col(static_cast<Eigen::Index>(i)) = grid[i];
+  }
+  return pairs;
+}
+
+TEST(RunsCrossValidation, AutoPicksTheTruthWhereRandomFoldsPickTheInterpolator) {
+  const ReferencePairs pairs = two_passes();
+  MappingOptions options;
+  options.model = "auto";
+  options.auto_select.candidates = {"gt", "dt"};
+  // Random folds: a held-out pair's scan siblings are in training, carrying its error.
+  options.auto_select.cv.kind = CrossValidationKind::random;
+  auto random = make_mapping(options);
+  random->fit(pairs);
+  EXPECT_EQ(random->summary().details.find("chosen")->as_string(), "dt");
+  // Runs: a held-out stretch is predicted from the other pass and the other stretches.
+  options.auto_select.cv.kind = CrossValidationKind::runs;
+  auto runs = make_mapping(options);
+  runs->fit(pairs);
+  EXPECT_EQ(runs->summary().details.find("chosen")->as_string(), "gt");
+  ASSERT_TRUE(runs->summary().cv.has_value());
+  EXPECT_EQ(runs->summary().cv->kind, "runs");
+  EXPECT_EQ(runs->summary().cv->pairs, 3000u);  // thinned along the run to the budget
+  // The chosen model's std_m still comes from blocked folds.
+  EXPECT_TRUE(runs->error_model().has_value());
 }
 
 TEST(BlockedCrossValidation, RefusesANegativeBlockAndTooFewFolds) {
