@@ -732,6 +732,11 @@ void visit(OptionVisitor& v, DualCheckOptions& o) {
           {.unit = "m",
            .doc = "A plan pose farther than this from the local registration's disagrees",
            .choices = {}});
+  v.field("local_distance_growth", o.local_distance_growth,
+          {.unit = "m/m",
+           .doc = "local_distance grows by this per metre from the poses the local registration "
+                  "was fitted on",
+           .choices = {}});
   v.field("local_heading", o.local_heading,
           {.unit = "rad", .doc = "Likewise for the heading", .choices = {}});
   v.field("local_reinitialize_distance", o.local_reinitialize_distance,

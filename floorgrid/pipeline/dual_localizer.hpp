@@ -168,6 +168,10 @@ struct DualCheckOptions {
   /// a corridor (ACES and Orebro: 0.5-0.8 m for 10-40 scans), or turned the wrong way in a
   /// cluttered room.
   double local_distance = 0.5;
+  /// Metres per metre: local_distance grows by this with the distance from the gridmap pose to
+  /// the nearest pose the local registration was fitted on (carried farther, a bend it does
+  /// not know shows more).
+  double local_distance_growth = 0.05;
   double local_heading = 0.12;  ///< radians
   /// The plan filter is re-initialized when it disagrees by more than this (world metres and
   /// radians) for consistency_scans scans: against the local registration when it is fresh...

@@ -70,6 +70,13 @@ void LocalRegistration::add(std::size_t scan, const Pose2& pose_in_map, const Po
   refit();
 }
 
+double LocalRegistration::distance_to(const Pose2& pose_in_map) const {
+  double nearest = std::numeric_limits<double>::infinity();
+  for (const Pair& p : pairs_)
+    nearest = std::min(nearest, (p.map.translation() - pose_in_map.translation()).norm());
+  return nearest;
+}
+
 bool LocalRegistration::fresh(std::size_t scan, std::size_t min_pairs, std::size_t max_age) const {
   if (pairs_.size() < std::max<std::size_t>(1, min_pairs))
     return false;

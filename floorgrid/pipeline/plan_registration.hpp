@@ -93,6 +93,9 @@ class LocalRegistration {
   bool fresh(std::size_t scan, std::size_t min_pairs, std::size_t max_age) const;
   /// The plan pose of a map pose by the current local registration (fresh() must hold).
   Pose2 plan_pose(const Pose2& pose_in_map) const;
+  /// Map metres from `pose_in_map` to the nearest map pose held (infinity when none): how far
+  /// the registration is carried beyond where it was fitted.
+  double distance_to(const Pose2& pose_in_map) const;
   /// Forgets every pair.
   void clear();
 
