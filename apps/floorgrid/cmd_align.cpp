@@ -61,7 +61,7 @@ void run_align(const std::string& dataset, const std::string& out, const JobOpti
   // What was learnt is written (metrics.json holds the localization's story), but a run that
   // made no pairs is a failure, not a result.
   require_pairs(a.localization, d);
-  require_plan_match(a.plan_match, d, options.align.localization.plan_location.min_plan_match);
+  require_plan_match(a.plan_match, d, options.align.localization.plan_location);
 }
 
 void add_align_command(CLI::App& root) {

@@ -52,7 +52,7 @@ void add_pairs_command(CLI::App& root) {
     const PlanMatch match =
         judge_plan_match(inputs.gridmap, inputs.plan, plan_walls_of(inputs.plan_geometry), l.pairs,
                          options.align.localization.plan_location.map_registration);
-    require_plan_match(match, d, options.align.localization.plan_location.min_plan_match);
+    require_plan_match(match, d, options.align.localization.plan_location);
     io::write_pairs_csv(l.pairs, out);
     std::optional<ErrorStatistics> errors;
     if (d.truth_warp && l.pairs.size() > 0) {

@@ -67,22 +67,24 @@ void require_pairs(const DualLocalization& l, const io::LoadedDataset& dataset) 
 }
 
 void require_plan_match(const PlanMatch& match, const io::LoadedDataset& dataset,
-                        double min_score) {
-  if (!match.judged || match.score.score >= min_score)
+                        const PlanLocationOptions& options) {
+  const double min_score = options.min_plan_match;
+  if (plan_match_accepted(match, min_score, options.max_plan_walls_in_free_space))
     return;
   const io::DatasetManifest& m = dataset.manifest;
   throw AlignmentFailure(fmt::format(
       "{}: the plan does not look like a drawing of the gridmap's building: under the similarity "
       "the pairs give (refined on the two maps, plan scale {:.4f}), {:.0f}% of the gridmap's "
       "walls lie on the plan's walls and {:.0f}% of the plan's walls lie where the robot saw free "
-      "space (score {:.2f}, needs {:.2f}; the right plan scored 0.33-0.90 on the datasets "
-      "measured). The filters converged "
+      "space (score {:.2f}, needs {:.2f}; plan walls in free space at most {:.0f}%; the right "
+      "plan scored 0.33-0.90 with 0-5% on the datasets measured). The filters converged "
       "on places that agree only locally, so the pairs would be confidently wrong. Check that {} "
       "is this building and floor (`floorgrid info` on it and on {}); if it is, give "
-      "floorplan_scale and initial_pose, or set plan_location.min_plan_match to -1 to accept it.",
+      "floorplan_scale and initial_pose, or set plan_location.min_plan_match to -1 and "
+      "max_plan_walls_in_free_space to 1 to accept it.",
       m.manifest_path.string(), 1.0 / match.score.transform.scale, 100.0 * match.score.on_walls,
-      100.0 * match.score.in_free_space, match.score.score, min_score, m.floorplan.string(),
-      m.gridmap.string()));
+      100.0 * match.score.in_free_space, match.score.score, min_score,
+      100.0 * options.max_plan_walls_in_free_space, m.floorplan.string(), m.gridmap.string()));
 }
 
 }  // namespace floorgrid::app

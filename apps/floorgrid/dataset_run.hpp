@@ -29,6 +29,7 @@ void require_pairs(const DualLocalization& localization, const io::LoadedDataset
 /// Throws AlignmentFailure (with what the maps show and what to try) when the plan does not
 /// match the gridmap under the pairs' similarity (score below `min_score`): a plan of another
 /// building or floor on which the filters converged anyway.
-void require_plan_match(const PlanMatch& match, const io::LoadedDataset& dataset, double min_score);
+void require_plan_match(const PlanMatch& match, const io::LoadedDataset& dataset,
+                        const PlanLocationOptions& options);
 
 }  // namespace floorgrid::app

@@ -858,6 +858,11 @@ void visit(OptionVisitor& v, PlanLocationOptions& o) {
            .doc = "Score the maps need under the pairs' similarity, else the plan is another "
                   "building's and the run fails",
            .choices = {}});
+  v.field("max_plan_walls_in_free_space", o.max_plan_walls_in_free_space,
+          {.unit = "",
+           .doc = "Share of the plan's walls in the robot's free space under the pairs' "
+                  "similarity beyond which the run fails",
+           .choices = {}});
   v.field("given_start_sigma", o.given_start_sigma,
           {.unit = "m", .doc = "Plan filter's first spread around a given start", .choices = {}});
   v.field("given_start_heading_sigma", o.given_start_heading_sigma,

@@ -121,6 +121,10 @@ struct PlanLocationOptions {
   /// made on them; a warehouse's plan given the office's own pairs 0.08 (the refinement hides
   /// the plan where the robot saw nothing); a run whose pairs were 5 m off 0.10.
   double min_plan_match = 0.15;
+  /// ... and no more than this share of the plan's walls (near the gridmap's known cells) may
+  /// lie where the robot saw free space: the right plan 0.00-0.05 (fr079's drawing), a run
+  /// whose pairs were 5 m off along Seattle's corridor 0.25 (scoring 0.23).
+  double max_plan_walls_in_free_space = 0.15;
   /// Plan metres and radians: the plan filter's first spread around a given start pose...
   double given_start_sigma = 0.2;
   double given_start_heading_sigma = 0.1;  ///< radians

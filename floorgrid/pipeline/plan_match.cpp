@@ -35,4 +35,9 @@ PlanMatch judge_plan_match(const OccupancyGrid& gridmap, const OccupancyGrid& pl
   return match;
 }
 
+bool plan_match_accepted(const PlanMatch& match, double min_score, double max_in_free_space) {
+  return !match.judged ||
+         (match.score.score >= min_score && match.score.in_free_space <= max_in_free_space);
+}
+
 }  // namespace floorgrid

@@ -23,4 +23,9 @@ PlanMatch judge_plan_match(const OccupancyGrid& gridmap, const OccupancyGrid& pl
                            PlanWalls plan_walls, const ReferencePairs& pairs,
                            const MapRegistrationOptions& options = {});
 
+/// Whether a judged match lets the run go on: its score at least `min_score` and at most
+/// `max_in_free_space` of the plan's walls in the robot's free space (a match not judged is
+/// let through: there was nothing to judge it on).
+bool plan_match_accepted(const PlanMatch& match, double min_score, double max_in_free_space);
+
 }  // namespace floorgrid

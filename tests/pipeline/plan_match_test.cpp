@@ -32,6 +32,30 @@ TEST(PlanMatch, TheRightPlanMatchesAndAnotherBuildingsDoesNot) {
                                            PlanWalls::vector_lines, office.manual_pairs);
   ASSERT_TRUE(wrong.judged);
   EXPECT_LT(wrong.score.score, PlanLocationOptions{}.min_plan_match);
+
+  // The run goes on with the right plan only.
+  const PlanLocationOptions o;
+  EXPECT_TRUE(plan_match_accepted(right, o.min_plan_match, o.max_plan_walls_in_free_space));
+  EXPECT_FALSE(plan_match_accepted(wrong, o.min_plan_match, o.max_plan_walls_in_free_space));
+}
+
+TEST(PlanMatch, PlanWallsWhereTheRobotSawFreeSpaceRefuseAPassingScore) {
+  // Seattle's DXF plan with pairs 5 m off along its corridor (measured): 47% of the gridmap's
+  // walls on the plan's, 25% of the plan's walls in free space, score 0.23 above 0.15.
+  PlanMatch off;
+  off.judged = true;
+  off.score.on_walls = 0.47;
+  off.score.in_free_space = 0.245;
+  off.score.score = 0.226;
+  const PlanLocationOptions o;
+  EXPECT_GE(off.score.score, o.min_plan_match);
+  EXPECT_FALSE(plan_match_accepted(off, o.min_plan_match, o.max_plan_walls_in_free_space));
+  // fr079's drawing (wrong in places): 0.33 with 5% in free space, accepted.
+  off.score.in_free_space = 0.05;
+  off.score.score = 0.33;
+  EXPECT_TRUE(plan_match_accepted(off, o.min_plan_match, o.max_plan_walls_in_free_space));
+  // Nothing judged: nothing refused.
+  EXPECT_TRUE(plan_match_accepted(PlanMatch{}, o.min_plan_match, o.max_plan_walls_in_free_space));
 }
 
 TEST(PlanMatch, PairsThatDetermineNoSimilarityAreNotJudged) {
