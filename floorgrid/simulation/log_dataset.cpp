@@ -148,8 +148,7 @@ WarpParams choose_warp(const Eigen::Matrix2Xd& walls_in_grid, double theta, doub
 // Whether the point at continuous cell coordinates `c` of wall cell (ix, iy) is drawn as wall.
 // A laser's wall surface lies, on average, on the centre of the cell its beams ended in, so a
 // wall cell's half toward a cell that is no wall is room, not wall, unless the cell is the whole
-// wall there (one cell thick along that axis), or the wall goes on diagonally on that side (a
-// slanted wall one cell thick is a staircase of short runs: their ends are no surface).
+// wall there (one cell thick along that axis).
 bool drawn_as_wall(const cv::Mat& walls, const Eigen::Vector2d& c, int ix, int iy) {
   const auto wall = [&](int jx, int jy) {
     return jx >= 0 && jy >= 0 && jx < walls.cols && jy < walls.rows &&
@@ -160,10 +159,9 @@ bool drawn_as_wall(const cv::Mat& walls, const Eigen::Vector2d& c, int ix, int i
   const bool low_x = c.x() - ix < 0.5, low_y = c.y() - iy < 0.5;
   const int near_x = low_x ? ix - 1 : ix + 1, far_x = low_x ? ix + 1 : ix - 1;
   const int near_y = low_y ? iy - 1 : iy + 1, far_y = low_y ? iy + 1 : iy - 1;
-  const bool on_x = wall(near_x, iy) || wall(near_x, iy - 1) || wall(near_x, iy + 1);
-  if (!on_x && wall(far_x, iy))
+  if (!wall(near_x, iy) && wall(far_x, iy))
     return false;
-  return wall(ix, near_y) || wall(ix - 1, near_y) || wall(ix + 1, near_y) || !wall(ix, far_y);
+  return wall(ix, near_y) || !wall(ix, far_y);
 }
 
 // Renders the drawn walls through the warp onto a raster of the world: pixel `pixel` metres,

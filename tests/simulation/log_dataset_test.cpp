@@ -4,9 +4,6 @@
 
 #include <gtest/gtest.h>
 
-#include <Eigen/Geometry>
-
-#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -41,15 +38,8 @@ std::vector<Segment> room() {
 
 // A corrected log of a loop through the room: a scan every 0.5 m and 20 degrees, as sparse as
 // the Radish logs, the poses exact.
-RobotLog room_log(double turn = 0.0) {
-  // The room turned by `turn` radians about the origin (its walls then slant across the cells).
-  const Eigen::Rotation2Dd R(turn);
-  std::vector<Segment> walls = room();
-  for (Segment& w : walls) {
-    w.a = R * w.a;
-    w.b = R * w.b;
-  }
-  const SegmentRayCaster caster(walls);
+RobotLog room_log() {
+  const SegmentRayCaster caster(room());
   LaserSpec spec;
   spec.range_noise_sigma = 0.005;
   spec.random_reading_fraction = 0.0;
@@ -62,9 +52,8 @@ RobotLog room_log(double turn = 0.0) {
       const Vector2d a = corners[c], b = corners[(c + 1) % 5];
       const int steps = static_cast<int>(std::ceil((b - a).norm() / 0.5));
       for (int i = 0; i < steps; ++i) {
-        const Vector2d p = R * (a + (b - a) * (double(i) / steps));
-        const double heading =
-            std::atan2((b - a).y(), (b - a).x()) + turn + 0.35 * std::sin(i + lap);
+        const Vector2d p = a + (b - a) * (double(i) / steps);
+        const double heading = std::atan2((b - a).y(), (b - a).x()) + 0.35 * std::sin(i + lap);
         const Pose2 pose{p.x(), p.y(), heading};
         const SimulatedScan scan = simulate_scan(caster, pose, spec, random);
         log.scans.push_back(to_laser_scan(scan, pose.compose(spec.laser_in_robot), pose, time));
@@ -135,36 +124,6 @@ TEST(LogDataset, RasterWallSurfacesKeepTheRoomsSize) {
     const double inner_width_world = (right - left - 1) * plan.resolution / d.plan_per_world;
     EXPECT_NEAR(inner_width_world, 12.0, 0.03) << "plan scale " << plan_scale;
   }
-}
-
-// A wall one cell thick and seen from both sides (the partition), slanted across the cells: the
-// gridmap holds it as a staircase of short runs, and the drawing is a stroke without gaps, not
-// dots (a run's ends are no wall surface where the wall goes on diagonally: cut as surfaces, a
-// third of the stroke went missing).
-TEST(LogDataset, ASlantedThinWallIsDrawnWithoutGaps) {
-  const double turn = 0.47;
-  const LogDataset d = simulate_from_log(room_log(turn), fixed(0.8, 13.0, 0.0));
-  const PlanTruth truth = d.truth();
-  const SimulatedWarp warp(d.warp);
-  const GridGeometry& plan = d.plan_raster.geometry();
-  const Eigen::Rotation2Dd R(turn);
-  const auto to_plan = [&](const Vector2d& g) {
-    return truth.world_to_plan(warp.grid_to_world(g).point);
-  };
-  // The partition's middle, 3.6-6.4 m up the room (away from the top wall and its open end):
-  // its drawn pixels within 1.5 pixels of it. A gapless stroke one pixel wide has at least one
-  // per pixel of its length.
-  const Vector2d a = to_plan(R * Vector2d(6.013, 3.6)), b = to_plan(R * Vector2d(6.013, 6.4));
-  std::size_t pixels = 0;
-  for (int iy = 0; iy < plan.height; ++iy) {
-    for (int ix = 0; ix < plan.width; ++ix) {
-      const Vector2d p = plan.cell_center(ix, iy);
-      const double t = (p - a).dot(b - a) / (b - a).squaredNorm();
-      if (t >= 0.0 && t <= 1.0 && (p - (a + t * (b - a))).norm() <= 1.5 * plan.resolution)
-        pixels += d.plan_raster.is_occupied(ix, iy);
-    }
-  }
-  EXPECT_GE(double(pixels), 0.9 * (b - a).norm() / plan.resolution) << pixels << " pixels";
 }
 
 TEST(LogDataset, ClutterIsLeftOutOfThePlan) {
