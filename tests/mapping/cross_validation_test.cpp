@@ -10,6 +10,7 @@
 #include <set>
 
 #include "floorgrid/core/random.hpp"
+#include "floorgrid/localization/pair_extraction.hpp"
 #include "floorgrid/mapping/cross_validation_folds.hpp"
 #include "floorgrid/mapping/mapping_factory.hpp"
 #include "floorgrid/mapping/model_selection.hpp"
@@ -238,7 +239,7 @@ TEST(ThinInOrder, KeepsEvenlySpreadPairsInTheirOrder) {
 ReferencePairs two_passes() {
   Random random(8);
   const test::Truth truth = test::similarity(0.3, 1.2, {2.0, -1.0});
-  std::vector<Eigen::Vector2d> plan, grid;
+  PairCollector pairs;
   for (int pass = 0; pass < 2; ++pass) {
     Eigen::Vector2d error = Eigen::Vector2d::Zero();
     for (int scan = 0; scan < 80; ++scan) {
@@ -254,20 +255,13 @@ ReferencePairs two_passes() {
         // Walls 1 m either side of the corridor, seen up to 2 m ahead and behind.
         const Eigen::Vector2d p =
             robot + Eigen::Vector2d(random.uniform(-2.0, 2.0), k % 2 == 0 ? -1.0 : 1.0);
-        plan.push_back(p);
-        grid.push_back(truth(p) + error +
-                       Eigen::Vector2d(random.normal(0.005), random.normal(0.005)));
+        pairs.plan.push_back(p);
+        pairs.grid.push_back(truth(p) + error +
+                             Eigen::Vector2d(random.normal(0.005), random.normal(0.005)));
       }
     }
   }
-  ReferencePairs pairs;
-  pairs.points_in_plan.resize(2, static_cast<Eigen::Index>(plan.size()));
-  pairs.points_in_grid.resize(2, static_cast<Eigen::Index>(grid.size()));
-  for (std::size_t i = 0; i < plan.size(); ++i) {
-    pairs.points_in_plan.col(static_cast<Eigen::Index>(i)) = plan[i];
-    pairs.points_in_grid.col(static_cast<Eigen::Index>(i)) = grid[i];
-  }
-  return pairs;
+  return pairs.pairs();
 }
 
 TEST(RunsCrossValidation, AutoPicksTheTruthWhereRandomFoldsPickTheInterpolator) {
