@@ -27,8 +27,9 @@ void require_localized(const LocalizationStatus& status, const io::LoadedDataset
 void require_pairs(const DualLocalization& localization, const io::LoadedDataset& dataset);
 
 /// Throws AlignmentFailure (with what the maps show and what to try) when the plan does not
-/// match the gridmap under the pairs' similarity (score below `min_score`): a plan of another
-/// building or floor on which the filters converged anyway.
+/// match the gridmap under the pairs' similarity (plan_match_accepted with the options'
+/// min_plan_match and max_plan_walls_in_free_space): a plan of another building or floor on
+/// which the filters converged anyway.
 void require_plan_match(const PlanMatch& match, const io::LoadedDataset& dataset,
                         const PlanLocationOptions& options);
 

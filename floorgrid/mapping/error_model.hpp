@@ -22,8 +22,9 @@ struct ErrorModelOptions {
   /// Held-out pairs needed at least: with fewer the model states no std_m.
   std::size_t min_residuals = 30;
   /// Calibration factor on the fitted variance, tuned on the simulator's presets and ACES seed
-  /// 1 (the median model's true errors then lie within std_m 69% and within 2 std_m 95% of the
-  /// time there): the held-out errors include the pairs' own noise, which a model's error at a
+  /// 1 when the error model was introduced (the median model's true errors then lay within
+  /// std_m 69% and within 2 std_m 95% of the time there; bench/real_matrix.sh prints what it
+  /// gives now): the held-out errors include the pairs' own noise, which a model's error at a
   /// point does not.
   double variance_scale = 0.7;
   /// Metres: radius (Gaussian sigma) over which the held-out errors around a point say how much

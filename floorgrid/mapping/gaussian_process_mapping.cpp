@@ -13,6 +13,17 @@
 
 namespace floorgrid {
 
+namespace {
+
+/// The zero map as a mean: the GP's constant mean alone (all outputs are residuals of nothing).
+Eigen::Matrix3d no_mean() {
+  Eigen::Matrix3d zero = Eigen::Matrix3d::Identity();
+  zero.topRows<2>().setZero();
+  return zero;
+}
+
+}  // namespace
+
 GaussianProcessMapping::GaussianProcessMapping(MappingCommonOptions common,
                                                GaussianProcessOptions gp, bool on_global_transform,
                                                RansacOptions ransac)
@@ -22,7 +33,7 @@ GaussianProcessMapping::GaussianProcessMapping(MappingCommonOptions common,
       ransac_(ransac) {
   validate_gaussian_process_options(gp_options_);
   if (!global_)
-    T_grid_plan_.topRows<2>().setZero();  // until fitted: the GP's constant mean alone
+    T_grid_plan_ = no_mean();  // until fitted
   ransac_.kind = TransformKind::similarity;
   ransac_.seed = this->common().seed;
 }
@@ -43,9 +54,7 @@ Eigen::Matrix3d least_squares_mean(const ReferencePairs& pairs) {
   try {
     return estimate_transform(pairs.points_in_plan, pairs.points_in_grid).T_grid_plan;
   } catch (const InputError&) {
-    Eigen::Matrix3d none = Eigen::Matrix3d::Identity();
-    none.topRows<2>().setZero();
-    return none;
+    return no_mean();
   }
 }
 
@@ -70,9 +79,8 @@ void GaussianProcessMapping::fit_model(const ReferencePairs& pairs, FitSummary& 
     // of all pairs is the mean instead, so the map reverts to it, as gpgt's to its RANSAC one.
     T_grid_plan_ = least_squares_mean(pairs);
     global = {{"T_grid_plan", model_fields::matrix(T_grid_plan_)},
-              {"fit", T_grid_plan_(0, 0) == 0.0 && T_grid_plan_(0, 1) == 0.0
-                          ? "none (degenerate pairs): the outputs' mean"
-                          : "least-squares similarity of all pairs"}};
+              {"fit", T_grid_plan_ == no_mean() ? "none (degenerate pairs): the outputs' mean"
+                                                : "least-squares similarity of all pairs"}};
   }
   Eigen::Matrix2Xd outputs =
       pairs.points_in_grid -
@@ -258,8 +266,7 @@ void GaussianProcessMapping::load_parameters(const Value& j, const std::string& 
   } else if (const Value* mean = optional_member(j, "T_grid_plan")) {
     T_grid_plan_ = matrix(*mean, where, p + "T_grid_plan", 3, 3);
   } else {
-    T_grid_plan_.setIdentity();  // a gp file from before the similarity mean: constant mean
-    T_grid_plan_.topRows<2>().setZero();
+    T_grid_plan_ = no_mean();  // a gp file from before the similarity mean: constant mean
   }
   try {
     validate_gp_lattice_options(prediction.lattice, p + "lattice");

@@ -115,8 +115,8 @@ void ThinPlateSplineMapping::fit_model(const ReferencePairs& pairs, FitSummary& 
       {"regularization_chosen",
        options_.regularization
            ? "given"
-           : "5-fold spatially blocked cross-validation on a subsample, scaled by pairs / "
-             "subsample"},
+           : "5-fold cross-validation on a subsample (spatially blocked from 100 pairs, "
+             "round robin below), scaled by pairs / subsample"},
       {"regularization_cv_error_m", table},
       {"bending_energy", spline_->bending_energy()}};
 }

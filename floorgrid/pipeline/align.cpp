@@ -147,8 +147,10 @@ Alignment align(const AlignmentInputs& in, const AlignmentOptions& options,
       judge_plan_match(in.gridmap, in.plan_grid, plan_walls_of(in.plan), a.localization.pairs,
                        options.localization.plan_location.map_registration);
 
-  // Every model, fitted and judged.
-  if (a.localization.pairs.size() > 0)
+  // Every model, fitted and judged: not on pairs between two different buildings.
+  const PlanLocationOptions& location = options.localization.plan_location;
+  if (a.localization.pairs.size() > 0 && plan_match_accepted(a.plan_match, location.min_plan_match,
+                                                             location.max_plan_walls_in_free_space))
     fit_and_judge_models(in, options, a, progress);
   return a;
 }

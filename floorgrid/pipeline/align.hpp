@@ -86,8 +86,9 @@ using AlignmentProgressCallback = std::function<void(const AlignmentProgress&)>;
 /// points where the gridmap saw something; manual pairs through the dt model: wall points
 /// inside their hull), and against the gridmap's walls. A model that cannot be fitted is
 /// reported, not fatal. A localization that fails is reported in
-/// `localization.status` (no models are fitted then); InputError for bad input (see
-/// localize_dual).
+/// `localization.status`, a plan that does not match the gridmap under the pairs (another
+/// building's) in `plan_match`: no models are fitted then, none would be right. InputError for
+/// bad input (see localize_dual).
 Alignment align(const AlignmentInputs& inputs, const AlignmentOptions& options = {},
                 const AlignmentProgressCallback& progress = {});
 

@@ -1,7 +1,5 @@
 #pragma once
 
-#include <optional>
-
 #include "floorgrid/geometry/reference_pairs.hpp"
 #include "floorgrid/maps/occupancy_grid.hpp"
 #include "floorgrid/pipeline/map_registration.hpp"

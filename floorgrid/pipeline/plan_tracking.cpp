@@ -21,12 +21,14 @@ std::optional<PlanRestart> DualCheck::judge(std::size_t scan, ScanRecord& record
   // laser, whatever units or scale the plan is drawn in.
   const double off = (plan_pose.translation() - expected.translation()).norm() * scale_;
   const double turned = std::abs(normalize_angle(plan_pose.theta - expected.theta));
-  const double local_distance = near ? options_.local_distance + options_.local_distance_growth *
-                                                                     local_.distance_to(grid_pose)
-                                     : 0.0;
-  record.consistent =
-      near ? off <= local_distance && turned <= options_.local_heading
-           : off <= options_.consistency_distance && turned <= options_.consistency_heading;
+  if (near) {
+    const double tolerance =
+        options_.local_distance + options_.local_distance_growth * local_.distance_to(grid_pose);
+    record.consistent = off <= tolerance && turned <= options_.local_heading;
+  } else {
+    record.consistent =
+        off <= options_.consistency_distance && turned <= options_.consistency_heading;
+  }
   const bool agrees = near ? off <= options_.local_reinitialize_distance &&
                                  turned <= options_.local_reinitialize_heading
                            : record.consistent;

@@ -92,6 +92,25 @@ TEST(AlignCommand, OfficeGivesAccuratePairsAndModelsAndEveryContractKey) {
   EXPECT_EQ(map.status, 0) << map.err;
 }
 
+TEST(AlignCommand, APlanRefusedByTheMatchGetsNoModels) {
+  // The office's own plan, held to a match no plan reaches: as a plan of another building, it
+  // ends with exit 3, the localization's story written and no model file to pick up.
+  TempDir dir;
+  ASSERT_EQ(run_floorgrid("simulate --preset office --seed 1 --out " + quoted(dir / "data")).status,
+            0);
+  test::write_file(dir / "strict.yaml",
+                   "align:\n  localization:\n    plan_location:\n      min_plan_match: 0.99\n");
+  const auto run = run_floorgrid("align " + quoted(dir / "data") + " --config " +
+                                 quoted(dir / "strict.yaml") + " --out " + quoted(dir / "out"));
+  EXPECT_EQ(run.status, 3) << run.out << run.err;
+  EXPECT_NE(run.err.find("does not look like a drawing"), std::string::npos) << run.err;
+  const json m = read_json(dir / "out" / "metrics.json");
+  EXPECT_GT(m["plan_match"]["score"].get<double>(), 0.3);  // the right plan, held to 0.99
+  EXPECT_TRUE(m["models"].empty());
+  EXPECT_FALSE(fs::exists(dir / "out" / "model.json"));
+  EXPECT_FALSE(fs::exists(dir / "out" / "model-gt.json"));
+}
+
 TEST(AlignCommand, BentOfficeIsFittedByTheGaussianProcesses) {
   TempDir dir;
   const json m = simulate_and_align("bent-office", 1, dir);
