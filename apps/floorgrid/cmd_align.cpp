@@ -19,9 +19,12 @@ namespace floorgrid::app {
 void run_align(const std::string& dataset, const std::string& out, const JobOptions& options) {
   const io::OutputFolder out_folder(out);
   const auto load_start = std::chrono::steady_clock::now();
-  const io::LoadedDataset d = io::load_dataset(dataset, options.raster, options.limits);
+  const io::LoadedDataset d =
+      io::load_dataset(dataset, options.raster, options.limits, options.units);
   for (const std::string& w : d.warnings)
     spdlog::warn("{}", w);
+  if (d.unit_decision && !d.unit_decision->overruled)
+    spdlog::info("{}: {}", d.manifest.floorplan.string(), d.unit_decision->reason);
   io::AlignmentTimings timings;
   timings.load =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - load_start).count();
@@ -55,7 +58,8 @@ void run_align(const std::string& dataset, const std::string& out, const JobOpti
   print_models(a);
   const std::string name =
       d.manifest.name.empty() ? d.manifest.folder().filename().string() : d.manifest.name;
-  const io::AlignmentFiles files = io::write_alignment(a, inputs, name, out, timings);
+  const io::AlignmentFiles files =
+      io::write_alignment(a, inputs, name, out, timings, io::floorplan_units_json(d));
   fmt::print("\nwrote {} files to {} (metrics.json, model.json, overlays/)\n", files.files.size(),
              files.folder.string());
   // What was learnt is written (metrics.json holds the localization's story), but a run that

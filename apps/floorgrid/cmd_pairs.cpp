@@ -35,7 +35,8 @@ void add_pairs_command(CLI::App& root) {
     const JobOptions options = job_options(*job);
     const std::filesystem::path out(args->out);
     const io::OutputFolder out_folder(out.parent_path().empty() ? "." : out.parent_path());
-    const io::LoadedDataset d = io::load_dataset(args->dataset, options.raster, options.limits);
+    const io::LoadedDataset d =
+        io::load_dataset(args->dataset, options.raster, options.limits, options.units);
     for (const std::string& w : d.warnings)
       spdlog::warn("{}", w);
     ProgressLine progress;

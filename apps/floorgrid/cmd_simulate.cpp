@@ -1,6 +1,7 @@
 // `floorgrid simulate --preset P --seed N --out DIR [--preview]`: a synthetic dataset with exact
 // ground truth; `floorgrid simulate --from-log LOG [--plan-scale S] [--bend M] [--rotation DEG]
-// [--plan-format png|dxf] --seed N --out DIR`: a semi-real one from a corrected real log.
+// [--plan-format png|dxf] [--dxf-units U] [--dxf-header H] --seed N --out DIR`: a semi-real one
+// from a corrected real log.
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
@@ -29,6 +30,8 @@ void simulate_log_dataset(const Args& a) {
   options.bend = a.bend;
   options.rotation_deg = a.rotation;
   options.vector_plan = a.plan_format == "dxf";
+  options.drawing_units = a.dxf_units;
+  options.header_units = a.dxf_header.value_or(a.dxf_units);
   try {
     validate_log_dataset_options(options);
   } catch (const InputError& e) {
@@ -56,7 +59,9 @@ void simulate_log_dataset(const Args& a) {
   fmt::print(
       "  plan      {} ({} x {} px), true floorplan_scale {:.4f} (plan {:.4f} m per px), "
       "turned {:.1f} deg, walls {} px; {} occupied cells left out as clutter\n",
-      o.vector_plan ? fmt::format("DXF, {} segments", s.plan_segments) : "raster",
+      o.vector_plan ? fmt::format("DXF in {} under a header saying {}, {} segments",
+                                  o.drawing_units, o.header_units, s.plan_segments)
+                    : "raster",
       d.plan_raster.width(), d.plan_raster.height(), *o.plan_scale, d.plan_raster.resolution(),
       s.rotation_deg, s.wall_thickness_px, s.clutter_cells);
   fmt::print("  warp      bend {:.2f} m (max strain {:.2f}%)\n", s.bend_deviation,
@@ -78,6 +83,8 @@ void add_simulate_command(CLI::App& root) {
     std::string from_log;
     std::optional<double> plan_scale, bend, rotation;
     std::string plan_format = "png";
+    std::string dxf_units = "m";
+    std::optional<std::string> dxf_header;
   };
   auto args = std::make_shared<Args>();
   std::string presets;
@@ -107,6 +114,14 @@ void add_simulate_command(CLI::App& root) {
                             "from a log: png (a raster with a map YAML) or dxf (vector walls)")
                 ->check(CLI::IsMember({"png", "dxf"}))
                 ->capture_default_str());
+  needs_log(cmd->add_option("--dxf-units", args->dxf_units,
+                            "from a log, DXF plan: the unit its coordinates are in")
+                ->check(CLI::IsMember({"m", "cm", "mm", "in", "ft"}))
+                ->capture_default_str());
+  needs_log(cmd->add_option("--dxf-header", args->dxf_header,
+                            "from a log, DXF plan: what its $INSUNITS says, or none (no header); "
+                            "default: the --dxf-units")
+                ->check(CLI::IsMember({"none", "m", "cm", "mm", "in", "ft"})));
   cmd->callback([args] {
     if (!args->from_log.empty()) {
       simulate_log_dataset(*args);

@@ -87,7 +87,8 @@ void draw_walls(RgbImage& picture, const AlignmentInputs& in,
 
 }  // namespace
 
-json metrics_json(const Alignment& a, const std::string& dataset, const AlignmentTimings& t) {
+json metrics_json(const Alignment& a, const std::string& dataset, const AlignmentTimings& t,
+                  const json& floorplan_units) {
   const DualLocalization& l = a.localization;
   json j;
   j["format"] = "floorgrid-metrics";
@@ -110,6 +111,8 @@ json metrics_json(const Alignment& a, const std::string& dataset, const Alignmen
   j["plan_scale"] = number(l.plan_scale);
   j["plan_scale_std"] = number(l.plan_scale_std);
   j["plan_scale_estimated"] = l.plan_scale_estimated;
+  if (!floorplan_units.is_null())
+    j["floorplan_units"] = floorplan_units;
   j["localization"] = {{"grid_start_scan", l.grid_start_scan},
                        {"longest_gap_scans", l.longest_gap},
                        {"plan_start_scan", l.plan_start_scan},
@@ -143,7 +146,7 @@ json metrics_json(const Alignment& a, const std::string& dataset, const Alignmen
 
 AlignmentFiles write_alignment(const Alignment& a, const AlignmentInputs& in,
                                const std::string& dataset, const std::filesystem::path& folder,
-                               AlignmentTimings& timings) {
+                               AlignmentTimings& timings, const json& floorplan_units) {
   const auto start = std::chrono::steady_clock::now();
   prepare_output_folder(folder);
   prepare_output_folder(folder / "overlays");
@@ -182,7 +185,8 @@ AlignmentFiles write_alignment(const Alignment& a, const AlignmentInputs& in,
     }
   }
   timings.write = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  write_file_atomically(folder / "metrics.json", metrics_json(a, dataset, timings).dump(1) + "\n");
+  write_file_atomically(folder / "metrics.json",
+                        metrics_json(a, dataset, timings, floorplan_units).dump(1) + "\n");
   files.files.emplace_back("metrics.json");
   return files;
 }

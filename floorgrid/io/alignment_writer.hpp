@@ -17,9 +17,11 @@ struct AlignmentTimings {
 };
 
 /// metrics.json (SPEC, a contract): pairs, plan scale, domain, per model errors against the
-/// truth, fit time, cross-validated error, back-and-forth drift and wall distances, timings.
+/// truth, fit time, cross-validated error, back-and-forth drift and wall distances, timings;
+/// `floorplan_units` (a DXF plan's units and how they were decided) when not null.
 nlohmann::json metrics_json(const Alignment& alignment, const std::string& dataset,
-                            const AlignmentTimings& timings);
+                            const AlignmentTimings& timings,
+                            const nlohmann::json& floorplan_units = nullptr);
 
 /// What write_alignment wrote.
 struct AlignmentFiles {
@@ -33,6 +35,7 @@ struct AlignmentFiles {
 /// when known, green, on the gridmap) and metrics.json last. `timings.write` is filled in.
 AlignmentFiles write_alignment(const Alignment& alignment, const AlignmentInputs& inputs,
                                const std::string& dataset, const std::filesystem::path& folder,
-                               AlignmentTimings& timings);
+                               AlignmentTimings& timings,
+                               const nlohmann::json& floorplan_units = nullptr);
 
 }  // namespace floorgrid::io

@@ -130,35 +130,62 @@ void check_memory(const LoadedDataset& d, const DatasetLimits& limits) {
   }
 }
 
+/// How the job draws a DXF plan.
+RasterizeOptions rasterize_options(const PlanRasterOptions& raster) {
+  RasterizeOptions r;
+  r.resolution = raster.resolution;
+  r.wall_thickness = raster.wall_thickness;
+  r.margin = raster.margin;
+  return r;
+}
+
+/// Whether the run decides the DXF's unit: none was asked for, and the drawing left more than
+/// one plausible.
+bool units_left_to_the_run(const DatasetManifest& m, const DxfReport& report) {
+  return m.floorplan_units == "auto" && report.units_source != "requested" &&
+         report.units_confidence != "high" && report.unit_candidates.size() >= 2;
+}
+
+/// The run's decision on the drawing's unit; the plan converted and the report updated when it
+/// overrules the drawing.
+PlanUnitDecision decide_units(const OccupancyGrid& gridmap, DxfFloorplan& dxf,
+                              const DatasetManifest& m, const RasterizeOptions& raster,
+                              const PlanUnitFitOptions& options) {
+  DxfReport& report = dxf.report;
+  const PlanUnit drawn = plan_unit_from_name(report.units_used).value_or(PlanUnit::m);
+  PlanUnitDecision decision = fit_plan_units(gridmap, dxf.plan, drawn, report.unit_candidates,
+                                             m.floorplan_scale, raster, options);
+  if (decision.overruled) {
+    dxf.plan = dxf.plan.scaled(metres_per_unit(decision.unit) / metres_per_unit(drawn));
+    report.units_used = std::string(unit_name(decision.unit));
+    report.metres_per_unit = metres_per_unit(decision.unit);
+    report.units_source = "run";
+    report.extent_m = dxf.plan.bounds();
+  }
+  if (decision.overruled || decision.confirmed)
+    report.units_confidence = "medium";
+  report.units_reason += "; " + decision.reason;
+  return decision;
+}
+
 }  // namespace
 
 LoadedDataset load_dataset(const std::filesystem::path& path, const PlanRasterOptions& raster,
-                           const DatasetLimits& limits) {
+                           const DatasetLimits& limits, const PlanUnitFitOptions& units) {
   LoadedDataset d;
   d.manifest = read_manifest(path);
   const DatasetManifest& m = d.manifest;
   std::string ext = m.floorplan.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::optional<DxfFloorplan> dxf;
   if (ext == ".dxf") {
     DxfReadOptions options;
     options.units = m.floorplan_units;
     options.include_layers = m.floorplan_layers;
     options.exclude_layers = m.floorplan_layers_exclude;
-    DxfFloorplan dxf = read_dxf(m.floorplan, options);
-    d.warnings.insert(d.warnings.end(), dxf.report.warnings.begin(), dxf.report.warnings.end());
-    RasterizeOptions r;
-    r.resolution = raster.resolution;
-    r.wall_thickness = raster.wall_thickness;
-    r.margin = raster.margin;
-    try {
-      d.plan_grid = rasterize(dxf.plan, r);
-    } catch (const InputError& e) {
-      throw InputError(e.message(), m.floorplan.string(), 0, "floorplan");
-    }
-    d.plan_wall_samples = dxf.plan.sample_points(0.05);
-    d.plan = std::move(dxf.plan);
-    d.dxf_report = std::move(dxf.report);
+    dxf = read_dxf(m.floorplan, options);
+    d.warnings.insert(d.warnings.end(), dxf->report.warnings.begin(), dxf->report.warnings.end());
   } else {
     LoadedMap plan = read_map(m.floorplan, m.floorplan_resolution, m.floorplan_origin, "floorplan");
     require_walls(plan, "floorplan");
@@ -171,6 +198,22 @@ LoadedDataset load_dataset(const std::filesystem::path& path, const PlanRasterOp
   d.warnings.insert(d.warnings.end(), grid.warnings.begin(), grid.warnings.end());
   d.gridmap = std::move(grid.grid);
   crop_large_map(d.gridmap, "gridmap " + m.gridmap.string(), limits, d.warnings);
+  if (dxf) {
+    const RasterizeOptions r = rasterize_options(raster);
+    if (units_left_to_the_run(m, dxf->report)) {
+      d.unit_decision = decide_units(d.gridmap, *dxf, m, r, units);
+      if (d.unit_decision->overruled)
+        d.warnings.push_back(m.floorplan.string() + ": " + d.unit_decision->reason);
+    }
+    try {
+      d.plan_grid = rasterize(dxf->plan, r);
+    } catch (const InputError& e) {
+      throw InputError(e.message(), m.floorplan.string(), 0, "floorplan");
+    }
+    d.plan_wall_samples = dxf->plan.sample_points(0.05);
+    d.plan = std::move(dxf->plan);
+    d.dxf_report = std::move(dxf->report);
+  }
   if (!d.plan)
     crop_large_map(d.plan_grid, "floorplan " + m.floorplan.string(), limits, d.warnings);
   if (m.log) {
@@ -195,6 +238,33 @@ LoadedDataset load_dataset(const std::filesystem::path& path, const PlanRasterOp
   if (m.truth.manual_pairs)
     d.manual_pairs = read_pairs_csv(*m.truth.manual_pairs);
   return d;
+}
+
+nlohmann::json floorplan_units_json(const LoadedDataset& d) {
+  if (!d.dxf_report)
+    return nullptr;
+  const DxfReport& r = *d.dxf_report;
+  nlohmann::json candidates = nlohmann::json::array();
+  for (const PlanUnitCandidate& c : r.unit_candidates) {
+    nlohmann::json j = {{"unit", unit_name(c.unit)}, {"probability", c.probability}};
+    if (d.unit_decision) {
+      for (const PlanUnitFit& f : d.unit_decision->fits) {
+        if (f.unit == c.unit && f.tried) {
+          j["fit_score"] = f.score;
+          j["fit_floorplan_scale"] = f.floorplan_scale;
+        }
+      }
+    }
+    candidates.push_back(std::move(j));
+  }
+  return {{"unit", r.units_used},
+          {"metres_per_unit", r.metres_per_unit},
+          {"header", r.header_units},
+          {"source", r.units_source},
+          {"confidence", r.units_confidence},
+          {"decided_by_run", d.unit_decision.has_value()},
+          {"reason", r.units_reason},
+          {"candidates", std::move(candidates)}};
 }
 
 }  // namespace floorgrid::io

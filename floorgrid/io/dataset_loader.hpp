@@ -1,5 +1,6 @@
 #pragma once
 
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -9,6 +10,7 @@
 #include "floorgrid/io/dxf_reader.hpp"
 #include "floorgrid/maps/occupancy_grid.hpp"
 #include "floorgrid/maps/vector_floorplan.hpp"
+#include "floorgrid/pipeline/plan_unit_fit.hpp"
 #include "floorgrid/robot/robot_log.hpp"
 #include "floorgrid/simulation/plan_truth.hpp"
 
@@ -34,10 +36,13 @@ struct DatasetLimits {
 
 /// Everything a dataset holds, read and prepared.
 struct LoadedDataset {
-  DatasetManifest manifest;                    ///< the manifest read
-  OccupancyGrid plan_grid;                     ///< the plan as an occupancy grid (plan metres)
-  std::optional<VectorFloorplan> plan;         ///< a DXF plan's geometry (layers filtered)
-  std::optional<DxfReport> dxf_report;         ///< how the DXF was read
+  DatasetManifest manifest;             ///< the manifest read
+  OccupancyGrid plan_grid;              ///< the plan as an occupancy grid (plan metres)
+  std::optional<VectorFloorplan> plan;  ///< a DXF plan's geometry (layers filtered)
+  std::optional<DxfReport> dxf_report;  ///< how the DXF was read
+  /// The run's say on a DXF's units, when the drawing left several plausible: the gridmap
+  /// registered on the plan under each.
+  std::optional<PlanUnitDecision> unit_decision;
   Eigen::Matrix2Xd plan_wall_samples;          ///< plan wall points every ~5 cm (plan metres)
   OccupancyGrid gridmap;                       ///< the robot's map
   std::optional<RobotLog> log;                 ///< the run, odometry noise added when asked
@@ -50,9 +55,16 @@ struct LoadedDataset {
 /// the gridmap, the log (with the manifest's laser settings, and odometry noise added when
 /// `odometry_noise` is given), and the truth it references. Large maps are cropped to their
 /// known area, and maps the main job could not localize in within `limits.memory_gb` are
-/// refused. InputError on bad input.
+/// refused. A DXF whose units the manifest leaves to `auto` and the drawing leaves ambiguous
+/// gets the unit under which the gridmap fits it (see fit_plan_units, with `units`).
+/// InputError on bad input.
 LoadedDataset load_dataset(const std::filesystem::path& path, const PlanRasterOptions& raster = {},
-                           const DatasetLimits& limits = {});
+                           const DatasetLimits& limits = {}, const PlanUnitFitOptions& units = {});
+
+/// A DXF plan's units as metrics.json reports them (`floorplan_units`): the unit used, its
+/// source and confidence, the reason, and each candidate with the drawing's probability and,
+/// when the run decided, how the gridmap fitted under it. Null for a raster plan.
+nlohmann::json floorplan_units_json(const LoadedDataset& dataset);
 
 /// The occupied cell centres of a grid (the "walls" of a raster plan), 2 x N, metres.
 Eigen::Matrix2Xd occupied_cell_centres(const OccupancyGrid& grid);

@@ -31,7 +31,8 @@ struct DxfReport {
   double metres_per_unit = 1.0;  ///< of units_used
   std::string units_reason;      ///< why units_used was chosen
   /// Where units_used came from: requested, header (`$INSUNITS` kept), header_overruled (the
-  /// drawing contradicted it strongly) or guessed (no usable header).
+  /// drawing contradicted it strongly), guessed (no usable header) or run (the robot's map fitted
+  /// the plan clearly better in another plausible unit; set by load_dataset).
   std::string units_source;
   std::string units_confidence;  ///< how sure units_used is: high, medium or low
   /// What the drawing shows about its units, one line per kind of evidence (extent, door swings,

@@ -1030,9 +1030,30 @@ void visit(OptionVisitor& v, io::PlanRasterOptions& o) {
   v.field("margin", o.margin, {.unit = "m", .doc = "Free border around the plan", .choices = {}});
 }
 
+void visit(OptionVisitor& v, PlanUnitFitOptions& o) {
+  v.field("scale_margin", o.scale_margin,
+          {.unit = "",
+           .doc = "Each unit is tried at the expected floorplan_scale times or divided by this",
+           .choices = {}});
+  v.field("min_score", o.min_score,
+          {.unit = "",
+           .doc = "Registration score a unit needs to be chosen by the run",
+           .choices = {}});
+  v.field("clear_margin", o.clear_margin,
+          {.unit = "",
+           .doc = "How much better than the drawing's unit another must fit to overrule it",
+           .choices = {}});
+  v.field("max_cells", o.max_cells,
+          {.unit = "cells", .doc = "A unit's plan is drawn coarser beyond this", .choices = {}});
+  v.group("registration", "The gridmap registered on the plan under each unit",
+          [&] { visit(v, o.registration); });
+}
+
 void visit(OptionVisitor& v, JobOptions& o) {
   v.group("raster", "How a DXF plan becomes a grid", [&] { visit(v, o.raster); });
   v.group("limits", "What loading a dataset may cost", [&] { visit(v, o.limits); });
+  v.group("units", "How the run decides a DXF's units when the drawing leaves several plausible",
+          [&] { visit(v, o.units); });
   v.group("align", "The main job: localization, models, evaluation", [&] { visit(v, o.align); });
 }
 

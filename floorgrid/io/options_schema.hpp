@@ -12,6 +12,7 @@ namespace floorgrid {
 struct JobOptions {
   io::PlanRasterOptions raster;  ///< how a DXF plan becomes a grid
   io::DatasetLimits limits;      ///< what loading may cost
+  PlanUnitFitOptions units;      ///< how the run decides a DXF's ambiguous units
   AlignmentOptions align;        ///< the main job
 };
 
@@ -38,6 +39,7 @@ void visit(OptionVisitor& v, LikelihoodFieldOptions& o);
 void visit(OptionVisitor& v, LinearCombinationOptions& o);
 void visit(OptionVisitor& v, LocalTransformsOptions& o);
 void visit(OptionVisitor& v, MapFilterOptions& o);
+void visit(OptionVisitor& v, PlanUnitFitOptions& o);
 void visit(OptionVisitor& v, MappingCommonOptions& o);
 void visit(OptionVisitor& v, MappingOptions& o);
 void visit(OptionVisitor& v, ModelComparisonOptions& o);

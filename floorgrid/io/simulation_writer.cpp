@@ -11,6 +11,7 @@
 #include "floorgrid/io/pairs_csv.hpp"
 #include "floorgrid/io/truth_json.hpp"
 #include "floorgrid/maps/layer_filter.hpp"
+#include "floorgrid/maps/plan_units.hpp"
 
 namespace floorgrid::io {
 
@@ -84,7 +85,8 @@ SimulationFiles write_log_dataset(const LogDataset& d, const std::string& source
                   std::to_string(d.options.seed);
   if (!d.plan_vector.empty()) {
     DxfWriteOptions dxf;
-    dxf.header_units = "m";
+    dxf.header_units = d.options.header_units;
+    dxf.units_per_metre = 1.0 / metres_per_unit(*plan_unit_from_name(d.options.drawing_units));
     write_dxf(d.plan_vector, add(folder / "floorplan.dxf"), dxf);
     manifest.floorplan = folder / "floorplan.dxf";
   } else {

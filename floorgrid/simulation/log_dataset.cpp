@@ -10,6 +10,7 @@
 #include "floorgrid/core/error.hpp"
 #include "floorgrid/core/random.hpp"
 #include "floorgrid/core/statistics.hpp"
+#include "floorgrid/maps/plan_units.hpp"
 #include "floorgrid/simulation/arc_bend.hpp"
 #include "floorgrid/simulation/manual_pairs.hpp"
 #include "floorgrid/simulation/slam_map.hpp"
@@ -269,6 +270,10 @@ void validate_log_dataset_options(const LogDatasetOptions& o) {
   positive(o.min_wall_extent, "min_wall_extent");
   if (!std::isfinite(o.margin) || o.margin < 0.0)
     throw InputError("must be a finite number >= 0", "", 0, "margin");
+  if (!plan_unit_from_name(o.drawing_units))
+    throw InputError("must be m, cm, mm, in or ft", "", 0, "drawing_units");
+  if (!insunits_code(o.header_units))
+    throw InputError("must be none, m, cm, mm, in or ft", "", 0, "header_units");
 }
 
 LogDataset simulate_from_log(const RobotLog& log, const LogDatasetOptions& options) {

@@ -33,6 +33,11 @@ struct LogDatasetOptions {
   /// Also draw the plan as vector walls (`plan_vector`): the outlines of the wall strokes,
   /// traced on a raster 4x finer and simplified to 0.02 m.
   bool vector_plan = false;
+  /// The unit the vector plan's DXF coordinates are in (m, cm, mm, in or ft).
+  std::string drawing_units = "m";
+  /// What the DXF's `$INSUNITS` says: a unit name, or "none" for no header (a file whose units
+  /// a reader must guess, or that lies).
+  std::string header_units = "m";
   MotionNoise odometry;  ///< the odometry noise the manifest asks for (SPEC's levels)
 };
 

@@ -189,10 +189,22 @@ TEST(SimulateCommand, FromARealLogWritesADatasetOtherToolsRead) {
   EXPECT_EQ(run_floorgrid("info " + quoted(dir / "png")).status, 0);
 
   const auto dxf = run_floorgrid("simulate --from-log " + log +
-                                 " --seed 4 --plan-format dxf --out " + quoted(dir / "dxf"));
+                                 " --seed 4 --plan-format dxf --dxf-units mm --dxf-header none "
+                                 "--out " +
+                                 quoted(dir / "dxf"));
   ASSERT_EQ(dxf.status, 0) << dxf.err;
-  const io::DxfFloorplan read = io::read_dxf(dir / "dxf" / "floorplan.dxf");
+  // In mm without a header: read as mm, the drawing is the building's size in plan metres.
+  io::DxfReadOptions mm;
+  mm.units = "mm";
+  const io::DxfFloorplan read = io::read_dxf(dir / "dxf" / "floorplan.dxf", mm);
   EXPECT_GT(read.plan.segments().size(), 100u);
+  EXPECT_EQ(read.report.header_units, "none");
+  // ACES is about 60 m across: read as mm, the plan is that in world metres (in metres it
+  // would be 60 km, in cm 6 km).
+  const PlanTruth dxf_truth = io::read_plan_truth(dir / "dxf" / "truth.json");
+  const double width = read.plan.bounds().sizes().maxCoeff() / dxf_truth.plan_scale();
+  EXPECT_GT(width, 40.0);
+  EXPECT_LT(width, 120.0);
 }
 
 TEST(SimulateCommand, FromLogOptionsAreCheckedBeforeAnyWork) {

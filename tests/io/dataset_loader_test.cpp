@@ -5,8 +5,10 @@
 
 #include <gtest/gtest.h>
 
+#include "floorgrid/io/dxf_writer.hpp"
 #include "floorgrid/io/map_io.hpp"
 #include "floorgrid/io/simulation_writer.hpp"
+#include "floorgrid/maps/layer_filter.hpp"
 #include "floorgrid/simulation/simulator.hpp"
 #include "tests/support/expect_error.hpp"
 #include "tests/support/test_data.hpp"
@@ -93,6 +95,46 @@ TEST(DatasetLoader, AGridmapWhoseThresholdsFindNoWallIsRefusedWithTheValuesAndTh
   yaml.replace(yaml.find("occupied_thresh: 0.65"), 21, "occupied_thresh: 0.55");
   test::write_file(dir / "gridmap.yaml", yaml);
   EXPECT_NO_THROW(io::load_dataset(dir.path()));
+}
+
+TEST(DatasetLoader, TheRunDecidesUnitsTheDrawingLeavesAmbiguous) {
+  // The office's walls alone (no door swings to tell the unit by) in cm, without $INSUNITS: the
+  // drawing alone cannot be sure of cm.
+  test::TempDir dir;
+  std::filesystem::copy(office_dataset(), dir.path(), std::filesystem::copy_options::recursive);
+  const io::LoadedDataset metres = io::load_dataset(dir.path());
+  io::DxfWriteOptions cm;
+  cm.header_units = "none";
+  cm.units_per_metre = 100.0;
+  io::write_dxf(filter_layers(*metres.plan, {{"WALLS"}, {}}), dir / "floorplan.dxf", cm);
+  PlanUnitFitOptions quick;  // the office is small and clear
+  quick.registration.candidates = 4;
+  quick.registration.max_points = 1500;
+  const io::LoadedDataset d = io::load_dataset(dir.path(), {}, {}, quick);
+  ASSERT_TRUE(d.dxf_report && d.unit_decision);
+  EXPECT_NE(d.dxf_report->units_confidence, "high");
+  EXPECT_GE(d.dxf_report->unit_candidates.size(), 2u);
+  EXPECT_EQ(d.dxf_report->units_used, "cm") << d.dxf_report->units_reason;
+  EXPECT_DOUBLE_EQ(d.dxf_report->metres_per_unit, 0.01);
+  // The drawing guessed right here; the run confirms it (the run overruling a wrong guess:
+  // PlanUnitFit.TheRunOverrulesADrawingReadInTheWrongUnit).
+  EXPECT_TRUE(d.unit_decision->confirmed) << d.dxf_report->units_reason;
+  EXPECT_NE(d.dxf_report->units_reason.find("the gridmap confirms"), std::string::npos);
+  // The plan is where the metre drawing put it, and so is its grid.
+  EXPECT_TRUE(
+      d.plan->bounds().isApprox(filter_layers(*metres.plan, {{"WALLS"}, {}}).bounds(), 1e-6));
+  EXPECT_NEAR(d.plan_grid.geometry().resolution, metres.plan_grid.geometry().resolution, 1e-12);
+  const nlohmann::json units = io::floorplan_units_json(d);
+  EXPECT_EQ(units["unit"], "cm");
+  EXPECT_TRUE(units["decided_by_run"].get<bool>());
+  EXPECT_GT(units["candidates"][0]["fit_score"].get<double>(), 0.5);
+  // A unit the manifest names is obeyed: the run is not asked.
+  std::string yaml = test::read_file(dir / "dataset.yaml");
+  yaml.replace(yaml.find("floorplan_units: auto"), 21, "floorplan_units: cm");
+  test::write_file(dir / "dataset.yaml", yaml);
+  const io::LoadedDataset asked = io::load_dataset(dir.path());
+  EXPECT_FALSE(asked.unit_decision);
+  EXPECT_EQ(asked.dxf_report->units_used, "cm");
 }
 
 }  // namespace
