@@ -59,6 +59,13 @@ void print_localization(const DualLocalization& l,
              l.grid_start_scan, pose(l.start.plan), l.plan_start_scan);
   fmt::print("diverged    plan filter {}, gridmap filter {}\n", reasons(l.plan_divergences),
              reasons(l.grid_divergences));
+  const DualLocalization::GridRestarts& restarts = l.grid_restarts;
+  if (restarts.near + restarts.global > 0) {
+    fmt::print(
+        "restarted   gridmap filter {} times near its last pose ({} not converged there in time), "
+        "{} times over the whole map\n",
+        restarts.near, restarts.near_failed, restarts.global);
+  }
   if (pair_errors) {
     fmt::print("pair error  median {} m, mean {} m, p95 {} m (against the truth)\n",
                metres(pair_errors->median), metres(pair_errors->mean), metres(pair_errors->p95));

@@ -120,6 +120,10 @@ json metrics_json(const Alignment& a, const std::string& dataset, const Alignmen
                        {"start_grid", {l.start.grid.x, l.start.grid.y, l.start.grid.theta}},
                        {"plan_divergences", l.plan_divergences.by_reason},
                        {"grid_divergences", l.grid_divergences.by_reason},
+                       {"grid_restarts",
+                        {{"near", l.grid_restarts.near},
+                         {"near_failed", l.grid_restarts.near_failed},
+                         {"global", l.grid_restarts.global}}},
                        {"notes", l.notes}};
   if (a.plan_match.judged) {
     const ScoredSimilarity& m = a.plan_match.score;

@@ -881,6 +881,15 @@ void visit(OptionVisitor& v, GridmapLocalizationOptions& o) {
       {.unit = "",
        .doc = "Global localization on the gridmap fails when not converged after this many scans",
        .choices = {}});
+  v.field("restart_near_scans", o.restart_near_scans,
+          {.unit = "",
+           .doc = "A diverged gridmap filter looks around its last converged pose this many scans "
+                  "before a global restart (0: global at once)",
+           .choices = {}});
+  v.field("restart_sigma", o.restart_sigma,
+          {.unit = "m", .doc = "That cloud's spread (+10% per metre travelled)", .choices = {}});
+  v.field("restart_heading_sigma", o.restart_heading_sigma,
+          {.unit = "rad", .doc = "and its heading spread", .choices = {}});
 }
 
 void visit(OptionVisitor& v, WallFieldOptions& o) {

@@ -82,6 +82,15 @@ MapFilterOptions default_grid_options();
 struct GridmapLocalizationOptions {
   /// A gridmap filter not converged after this many scans: global localization failed.
   int max_global_scans = 600;
+  /// A gridmap filter that diverges after converging restarts first as a wide cloud around its
+  /// last converged pose carried on by the odometry (the robot is most likely near there; a
+  /// global restart from an ambiguous scan can wander a building of look-alike corridors for
+  /// dozens of scans), and globally when that has not converged within this many scans (0:
+  /// always globally at once).
+  int restart_near_scans = 10;
+  /// That cloud's spread, metres (growing by a tenth per metre travelled since) and radians.
+  double restart_sigma = 0.5;
+  double restart_heading_sigma = 0.25;
 };
 
 /// Step 2: where the run lies on the plan.
@@ -332,6 +341,12 @@ struct DualLocalization {
   std::optional<PlanRegistrationResult> registration;
   DivergenceCount plan_divergences;  ///< the plan filter's, while localizing
   DivergenceCount grid_divergences;  ///< the gridmap filter's
+  /// How the gridmap filter restarted after diverging.
+  struct GridRestarts {
+    std::size_t near = 0;         ///< around its last converged pose
+    std::size_t near_failed = 0;  ///< of those, not converged in time: restarted globally
+    std::size_t global = 0;       ///< from a scan's best hypotheses over the whole map
+  } grid_restarts;
   std::size_t plan_corrections = 0;  ///< improved-proposal corrections of the plan filter
   std::size_t grid_corrections = 0;  ///< the same for the gridmap filter
   /// Plan filter steps that moved by the gridmap filter's motion (guide_plan_by_gridmap).

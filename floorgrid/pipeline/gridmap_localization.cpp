@@ -33,6 +33,29 @@ void reseed_globally(FilterRunner& runner, const DualMaps& maps, std::size_t i,
                                              options.threads);
 }
 
+/// The filter's last converged pose.
+struct LastConverged {
+  std::size_t scan = 0;
+  Pose2 pose;
+};
+
+/// Lost on the gridmap at scan `i` after converging: restart as a wide cloud around the last
+/// converged pose carried on to scan `i` by the odometry (the estimate of a diverging filter
+/// may already be a corridor off or turned around), wider the farther the robot went since.
+void reseed_near(FilterRunner& runner, const DualMaps& maps, const RobotLog& log,
+                 const LastConverged& last, std::size_t i, const DualLocalizerOptions& options) {
+  const GridmapLocalizationOptions& o = options.gridmap_localization;
+  const Pose2 moved = log.scans[last.scan].robot_pose.between(log.scans[i].robot_pose);
+  const double travelled = moved.translation().norm();
+  runner.filter() =
+      ParticleFilter(options.grid.filter, stream_seed(options.seed, SeedStream::gridmap_reseed, i));
+  runner.filter().initialize_tracking(
+      TrackingStart{.pose = last.pose.compose(moved),
+                    .position_sigma = o.restart_sigma * (1.0 + 0.1 * travelled),
+                    .heading_sigma = o.restart_heading_sigma},
+      maps.gridmap());
+}
+
 /// Why the gridmap filter did not converge, and what to check.
 LocalizationStatus not_converged(const DualLocalizerInputs& inputs, int scans) {
   LocalizationStatus status{.ok = false, .message = {}, .field = "gridmap"};
@@ -66,14 +89,38 @@ GridmapLocalization localize_on_gridmap(const DualMaps& maps, const DualLocalize
   if (!inputs.start)
     runner.start_at(0);  // the hypotheses used scan 0
   GridmapLocalization found;
+  const auto near_scans =
+      static_cast<std::size_t>(std::max(0, options.gridmap_localization.restart_near_scans));
+  std::optional<LastConverged> last;   // since the last restart
+  std::optional<std::size_t> near_at;  // the scan of a restart near `last` not yet converged
   for (std::size_t i = inputs.start ? 0 : 1; i < n; ++i) {
     FilterRecord& r = result.scans[i].grid = runner.step(i);
-    if (r.diverged) {
-      count_divergence(result.grid_divergences,
-                       std::string(to_string(runner.filter().status().divergence.reason)));
+    if (r.converged) {
+      last = LastConverged{i, r.pose};
+      near_at.reset();
+    }
+    const bool near_failed = near_at && i >= *near_at + near_scans;
+    if (r.diverged || near_failed) {
+      if (r.diverged) {
+        count_divergence(result.grid_divergences,
+                         std::string(to_string(runner.filter().status().divergence.reason)));
+      }
       start_held = start_held && found.first_converged.has_value();
-      reseed_globally(runner, maps, i, options);
-      r.state = FilterState::global;
+      // Once converged, the robot is near where the filter last was: look there first, and
+      // over the whole map only when that does not converge.
+      result.grid_restarts.near_failed += near_failed;
+      if (last && near_scans > 0) {
+        ++result.grid_restarts.near;
+        reseed_near(runner, maps, inputs.log, *last, i, options);
+        near_at = i;
+        r.state = FilterState::tracking;
+      } else {
+        ++result.grid_restarts.global;
+        reseed_globally(runner, maps, i, options);
+        near_at.reset();
+        r.state = FilterState::global;
+      }
+      last.reset();
       r.converged = false;
     }
     if (r.converged && !found.first_converged) {
