@@ -53,7 +53,21 @@ struct CrossValidationResult {
   /// (finite errors), for the model's error model (fit_error_model); empty for random folds,
   /// whose held-out pairs have near-copies in training.
   std::vector<HeldOutResidual> held_out;
+  /// Every pair's held-out error, by pair (infinite where its fold failed): the same pairs and
+  /// folds for every model cross-validated with the same options, so models compare pair by
+  /// pair (see paired_scores).
+  std::vector<double> pair_errors;
 };
+
+/// Scores models pair by pair on their held-out errors (`errors[m][i]`: model m's at pair i,
+/// the same pairs for all): each model's mean squared error over the pairs whose median error
+/// over the models is at most `trim` times the median of those (a stretch the filters got
+/// wrong, pairs far off, would weigh on every model's mean, most on the smooth models that do
+/// not follow it). The pairs' own noise adds the same to every model's mean squared error, so
+/// the differences are the models' own (a median of the errors hides them under that noise).
+/// Infinite for a model with an infinite error on a kept pair.
+std::vector<double> paired_scores(const std::vector<std::vector<double>>& errors,
+                                  double trim = 3.0);
 
 /// k-fold cross-validation of the model `options` names: pairs are merged, binned to
 /// max_pairs, and dealt into k folds (seeded by options.common.seed): by default whole square
@@ -77,7 +91,7 @@ struct AutoOptions {
 };
 
 /// `auto`: the candidate with the lowest cross-validated mean error (spatially blocked folds
-/// by default, see cross_validate; median error for runs), refitted on all pairs; the table of
+/// by default, see cross_validate; for runs, the lowest paired_scores), refitted on all pairs; the table of
 /// every candidate's error is kept in the fit's details and the model file, with how it was
 /// cross-validated.
 class AutoMapping : public PointMapping {

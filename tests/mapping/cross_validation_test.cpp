@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <set>
@@ -286,14 +287,42 @@ TEST(RunsCrossValidation, AutoPicksTheTruthWhereRandomFoldsPickTheInterpolator) 
   EXPECT_TRUE(runs->error_model().has_value());
 }
 
-TEST(RunsCrossValidation, AutoPicksByTheRunsMedianAndOtherwiseByTheMean) {
-  // Cross-validations as a stretch the filters got wrong leaves them: gt errs little but on that
-  // stretch (a large mean, a small median), dt a little everywhere.
-  CrossValidationResult gt, dt;
-  gt.mean_error_m = 0.10;
-  gt.median_error_m = 0.02;
-  dt.mean_error_m = 0.05;
-  dt.median_error_m = 0.04;
+/// Held-out errors of 100 pairs: `good` on the first 90, `bad` on a stretch of 10.
+CrossValidationResult held_out_errors(double good, double bad) {
+  CrossValidationResult cv;
+  cv.pair_errors.assign(90, good);
+  cv.pair_errors.insert(cv.pair_errors.end(), 10, bad);
+  cv.mean_error_m = (90 * good + 10 * bad) / 100.0;
+  cv.median_error_m = good;
+  return cv;
+}
+
+TEST(PairedScores, TrimTheStretchEveryModelGotWrongAndCompareSquaredErrors) {
+  // gt errs little but on the stretch the filters got wrong, dt a little everywhere.
+  const CrossValidationResult gt = held_out_errors(0.02, 0.8), dt = held_out_errors(0.04, 0.5);
+  const std::vector<double> scores = paired_scores({gt.pair_errors, dt.pair_errors});
+  ASSERT_EQ(scores.size(), 2u);
+  EXPECT_NEAR(scores[0], 0.02 * 0.02, 1e-12);  // the stretch trimmed
+  EXPECT_NEAR(scores[1], 0.04 * 0.04, 1e-12);
+  // Untrimmed, the stretch decides.
+  const std::vector<double> all = paired_scores({gt.pair_errors, dt.pair_errors}, 1e9);
+  EXPECT_GT(all[0], all[1]);
+  // Squared errors, not medians: errors of 0.01 and 0.03 half and half score below 0.025
+  // everywhere (mean squared 0.0005 < 0.000625), though their median is larger.
+  std::vector<double> mixed(100, 0.01), flat(100, 0.025);
+  std::fill(mixed.begin(), mixed.begin() + 50, 0.03);
+  const std::vector<double> noise = paired_scores({mixed, flat});
+  EXPECT_LT(noise[0], noise[1]);
+  // A model that could not predict a kept pair scores infinite; sizes that differ too.
+  std::vector<double> failed = flat;
+  failed[3] = std::numeric_limits<double>::infinity();
+  EXPECT_TRUE(std::isinf(paired_scores({flat, failed})[1]));
+  EXPECT_TRUE(std::isinf(paired_scores({flat, {0.1, 0.2}})[1]));
+  EXPECT_TRUE(paired_scores({}).empty());
+}
+
+TEST(RunsCrossValidation, AutoPicksByPairedScoresAndOtherwiseByTheMean) {
+  const CrossValidationResult gt = held_out_errors(0.02, 0.8), dt = held_out_errors(0.04, 0.5);
   MappingOptions options;
   options.model = "auto";
   options.auto_select.candidates = {"gt", "dt"};
