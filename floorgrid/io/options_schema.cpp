@@ -323,6 +323,16 @@ void visit(OptionVisitor& v, ThinPlateSplineModelOptions& o) {
            .choices = {}});
   v.field("tuning_pairs", o.tuning_pairs,
           {.unit = "", .doc = "Subsample size of the lambda choice", .choices = {}});
+  v.field("robust_max_pairs", o.robust_max_pairs,
+          {.unit = "",
+           .doc = "At most this many pairs (hand-picked) are refitted robustly (0: never)",
+           .choices = {}});
+  v.field("robust_iterations", o.robust_iterations,
+          {.unit = "", .doc = "Reweightings of the robust refit", .choices = {}});
+  v.field("robust_cutoff", o.robust_cutoff,
+          {.unit = "",
+           .doc = "Leave-one-out errors above this many times their median are down-weighted",
+           .choices = {}});
   v.group("lattice", "For mapping many points at once", [&] { visit(v, o.lattice); });
   v.field("lattice_from", o.lattice_from,
           {.unit = "", .doc = "Batches at least this large use the lattice", .choices = {}});

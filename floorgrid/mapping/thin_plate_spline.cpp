@@ -93,13 +93,18 @@ std::pair<Eigen::Index, Eigen::Index> find_coincident(const Eigen::ArrayXd& x,
 
 void validate_inputs(const Eigen::Ref<const Eigen::Matrix2Xd>& points_in_plan,
                      const Eigen::Ref<const Eigen::Matrix2Xd>& points_in_grid,
-                     const ThinPlateSplineOptions& options) {
+                     const ThinPlateSplineOptions& options, const Eigen::VectorXd& weights) {
   if (!(options.regularization >= 0.0) || !std::isfinite(options.regularization)) {
     std::ostringstream message;
     message << "must be >= 0 m^2 (got " << options.regularization << ")";
     throw InputError(message.str(), {}, 0, "tps.regularization");
   }
   const Eigen::Index n = points_in_plan.cols();
+  if (weights.size() != 0 &&
+      (weights.size() != n || !(weights.array() > 0.0).all() || !weights.allFinite())) {
+    throw InputError("must be " + std::to_string(n) + " finite weights > 0, or none", {}, 0,
+                     "tps.weights");
+  }
   if (points_in_grid.cols() != n) {
     throw_pairs_error("mismatched sizes: " + std::to_string(n) + " plan points, " +
                       std::to_string(points_in_grid.cols()) + " grid points");
@@ -144,8 +149,9 @@ void derivative_terms(Eigen::Index n, const Eigen::Vector2d& x, const double* __
 
 ThinPlateSpline ThinPlateSpline::fit(const Eigen::Ref<const Eigen::Matrix2Xd>& points_in_plan,
                                      const Eigen::Ref<const Eigen::Matrix2Xd>& points_in_grid,
-                                     const ThinPlateSplineOptions& options) {
-  validate_inputs(points_in_plan, points_in_grid, options);
+                                     const ThinPlateSplineOptions& options,
+                                     const Eigen::VectorXd& weights) {
+  validate_inputs(points_in_plan, points_in_grid, options, weights);
   const Eigen::Index n = points_in_plan.cols();
   ThinPlateSplineData d;
   d.centres_in_plan = points_in_plan;
@@ -177,12 +183,13 @@ ThinPlateSpline ThinPlateSpline::fit(const Eigen::Ref<const Eigen::Matrix2Xd>& p
   d.output_offset = points_in_grid.rowwise().mean();
   const double lambda = options.regularization / (d.input_scale * d.input_scale);
 
-  // K, then B = Q^T K Q with the QR of P = [1 x y].
+  // K + lambda W^-1, then B = Q^T (K + lambda W^-1) Q with the QR of P = [1 x y].
   Eigen::MatrixXd B(n, n);
   Eigen::ArrayXd column(n);
   for (Eigen::Index j = 0; j < n; ++j) {
     kernel_values(cx, cy, Eigen::Vector2d(cx[j], cy[j]), column);
     B.col(j) = column.matrix();
+    B(j, j) += weights.size() != 0 ? lambda / weights[j] : lambda;
   }
   Eigen::MatrixXd P(n, 3);
   P.col(0).setOnes();
@@ -195,11 +202,10 @@ ThinPlateSpline ThinPlateSpline::fit(const Eigen::Ref<const Eigen::Matrix2Xd>& p
   Eigen::MatrixXd z = (points_in_grid.colwise() - d.output_offset).transpose();  // n x 2
   Q.adjoint().applyThisOnTheLeft(z);
 
-  // (Q2^T K Q2 + lambda I) g = Q2^T y, by Cholesky in place.
+  // (Q2^T (K + lambda W^-1) Q2) g = Q2^T y, by Cholesky in place.
   const Eigen::Index m = n - 3;
   Eigen::MatrixXd g(m, 2);
   if (m > 0) {
-    B.bottomRightCorner(m, m).diagonal().array() += lambda;
     Eigen::Ref<Eigen::MatrixXd> block = B.bottomRightCorner(m, m);
     const Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>> cholesky(block);
     if (cholesky.info() != Eigen::Success) {
@@ -209,7 +215,7 @@ ThinPlateSpline ThinPlateSpline::fit(const Eigen::Ref<const Eigen::Matrix2Xd>& p
     }
     g = cholesky.solve(z.bottomRows(m));
   }
-  // R a = Q1^T (y - K w); the lambda w term drops out (Q1^T Q2 = 0).
+  // R a = Q1^T (y - (K + lambda W^-1) w).
   const Eigen::Matrix<double, 3, 2> rhs = z.topRows(3) - B.topRightCorner(3, m) * g;
   const Eigen::Matrix<double, 3, 2> a =
       qr.matrixQR().topLeftCorner(3, 3).triangularView<Eigen::Upper>().solve(rhs);

@@ -40,8 +40,9 @@ struct ThinPlateSplineDerivatives {
 /// the QGIS/GDAL georeferencers, with optional smoothing.
 ///
 /// Solver: the affine part is eliminated with a Householder QR of P = [1 x y] = [Q1 Q2] R;
-/// w = Q2 g with (Q2^T K Q2 + lambda I) g = Q2^T y solved by Cholesky (positive definite for
-/// distinct centres, or any centres when lambda > 0), then R a = Q1^T (y - K w). The plan
+/// w = Q2 g with Q2^T (K + lambda W^-1) Q2 g = Q2^T y solved by Cholesky (positive definite
+/// for distinct centres, or any centres when lambda > 0), then R a = Q1^T (y - (K + lambda
+/// W^-1) w), W the pairs' weights (the identity without). The plan
 /// coordinates are centred and divided by their rms radius s first, for conditioning: as
 /// U(s r) = s^2 U(r) + s^2 log(s) r^2, and the r^2 part sums to a constant when P^T w = 0
 /// (absorbed by the affine part), the normalized problem with lambda / s^2 is exactly the
@@ -53,10 +54,14 @@ class ThinPlateSpline {
   /// `pairs` on mismatched sizes, fewer than 3 pairs, NaN/infinite coordinates, collinear plan
   /// points, and (with regularization 0) coinciding plan points, which an interpolant cannot
   /// honour (merge them or set regularization > 0); naming `tps.regularization` when it is
-  /// negative or not finite.
+  /// negative or not finite. `weights` (w_i > 0, one per pair, or empty for all 1) make pair
+  /// i's penalty lambda / w_i: a pair of small weight is followed less (a robust refit's
+  /// down-weighted pairs); no effect with regularization 0. InputError naming `tps.weights`
+  /// when they are not n finite numbers > 0.
   static ThinPlateSpline fit(const Eigen::Ref<const Eigen::Matrix2Xd>& points_in_plan,
                              const Eigen::Ref<const Eigen::Matrix2Xd>& points_in_grid,
-                             const ThinPlateSplineOptions& options = {});
+                             const ThinPlateSplineOptions& options = {},
+                             const Eigen::VectorXd& weights = {});
 
   /// A spline from its plain data (a model file). Throws InputError naming `tps` when the sizes
   /// disagree, a value is not finite, or input_scale <= 0.

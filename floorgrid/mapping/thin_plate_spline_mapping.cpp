@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "floorgrid/core/random.hpp"
+#include "floorgrid/core/statistics.hpp"
 #include "floorgrid/mapping/cross_validation_folds.hpp"
 #include "floorgrid/mapping/pair_preparation.hpp"
 
@@ -99,13 +100,63 @@ double ThinPlateSplineMapping::choose_regularization(const ReferencePairs& pairs
   return best * static_cast<double>(pairs.size()) / static_cast<double>(sample.size());
 }
 
+namespace {
+
+/// Robust weights of the pairs for a spline of `lambda` (see
+/// ThinPlateSplineModelOptions::robust_max_pairs); all 1 when no pair stands out.
+Eigen::VectorXd robust_weights(const ReferencePairs& pairs, double lambda,
+                               const ThinPlateSplineModelOptions& o) {
+  const Eigen::Index n = pairs.size();
+  Eigen::VectorXd weights = Eigen::VectorXd::Ones(n);
+  for (int iteration = 0; iteration < o.robust_iterations; ++iteration) {
+    std::vector<double> errors(static_cast<std::size_t>(n));
+    for (Eigen::Index i = 0; i < n; ++i) {
+      std::vector<Eigen::Index> others;
+      for (Eigen::Index k = 0; k < n; ++k) {
+        if (k != i)
+          others.push_back(k);
+      }
+      const ReferencePairs training = select_pairs(pairs, others);
+      Eigen::VectorXd training_weights(n - 1);
+      for (Eigen::Index k = 0; k < n - 1; ++k)
+        training_weights[k] = weights[others[static_cast<std::size_t>(k)]];
+      try {
+        const ThinPlateSpline spline = ThinPlateSpline::fit(
+            training.points_in_plan, training.points_in_grid, {lambda}, training_weights);
+        errors[static_cast<std::size_t>(i)] =
+            (spline.evaluate(pairs.points_in_plan.col(i)) - pairs.points_in_grid.col(i)).norm();
+      } catch (const InputError&) {
+        return Eigen::VectorXd::Ones(n);  // a training set the spline refuses: no reweighting
+      }
+    }
+    std::vector<double> sorted = errors;
+    const double limit = o.robust_cutoff * upper_median(sorted);
+    if (!(limit > 0.0))
+      break;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const double e = errors[static_cast<std::size_t>(i)];
+      weights[i] = e > limit ? (limit / e) * (limit / e) : 1.0;
+    }
+  }
+  return weights;
+}
+
+}  // namespace
+
 ThinPlateSplineMapping::~ThinPlateSplineMapping() = default;
 
 void ThinPlateSplineMapping::fit_model(const ReferencePairs& pairs, FitSummary& summary) {
   Value table = Value::object();
   const double lambda =
       options_.regularization ? *options_.regularization : choose_regularization(pairs, table);
-  spline_.emplace(ThinPlateSpline::fit(pairs.points_in_plan, pairs.points_in_grid, {lambda}));
+  Eigen::VectorXd weights;
+  const bool robust = lambda > 0.0 && options_.robust_iterations > 0 &&
+                      static_cast<std::size_t>(pairs.size()) <= options_.robust_max_pairs &&
+                      pairs.size() >= 5;
+  if (robust)
+    weights = robust_weights(pairs, lambda, options_);
+  spline_.emplace(
+      ThinPlateSpline::fit(pairs.points_in_plan, pairs.points_in_grid, {lambda}, weights));
   const Eigen::Matrix2Xd residual =
       spline_->evaluate_batch(pairs.points_in_plan, 2) - pairs.points_in_grid;
   summary.rms_m = std::sqrt(residual.colwise().squaredNorm().mean());
@@ -118,7 +169,9 @@ void ThinPlateSplineMapping::fit_model(const ReferencePairs& pairs, FitSummary& 
            : "5-fold cross-validation on a subsample (spatially blocked from 100 pairs, "
              "round robin below), scaled by pairs / subsample"},
       {"regularization_cv_error_m", table},
-      {"bending_energy", spline_->bending_energy()}};
+      {"bending_energy", spline_->bending_energy()},
+      {"robust_downweighted",
+       robust ? Value(static_cast<std::int64_t>((weights.array() < 1.0).count())) : Value()}};
 }
 
 Eigen::Vector2d ThinPlateSplineMapping::forward(const Eigen::Vector2d& p) const {

@@ -15,7 +15,14 @@ struct ThinPlateSplineModelOptions {
   /// Regularization weight lambda, m^2 (0 interpolates); nullopt chooses it by 5-fold
   /// spatially blocked cross-validation on a subsample (see ThinPlateSplineMapping).
   std::optional<double> regularization;
-  std::size_t tuning_pairs = 400;         ///< subsample size of the lambda choice
+  std::size_t tuning_pairs = 400;  ///< subsample size of the lambda choice
+  /// A few pairs (hand-picked: at most this many, 0: never) are refitted robustly when lambda
+  /// > 0: a pair whose leave-one-out error exceeds `robust_cutoff` times the pairs' median
+  /// leave-one-out error gets the weight (that limit / its error)^2, `robust_iterations` times,
+  /// so that a mis-clicked pair bends the spline less around it.
+  std::size_t robust_max_pairs = 200;
+  int robust_iterations = 2;
+  double robust_cutoff = 2.2;
   ThinPlateSplineLatticeOptions lattice;  ///< for mapping many points at once
   Eigen::Index lattice_from = 50'000;     ///< batches at least this large use the lattice
 };
