@@ -37,8 +37,59 @@ ThinPlateSplineMapping::ThinPlateSplineMapping(MappingCommonOptions common,
 
 namespace {
 
-/// Mean held-out error of a spline with `lambda` over `folds` of `pairs`.
-double cross_validated_error(const ReferencePairs& pairs, const Folds& folds, double lambda) {
+/// Robust weights of the pairs for a spline of `lambda` (see
+/// ThinPlateSplineModelOptions::robust_max_pairs); all 1 when no pair stands out.
+Eigen::VectorXd robust_weights(const ReferencePairs& pairs, double lambda,
+                               const ThinPlateSplineModelOptions& o) {
+  const Eigen::Index n = pairs.size();
+  Eigen::VectorXd weights = Eigen::VectorXd::Ones(n);
+  for (int iteration = 0; iteration < o.robust_iterations; ++iteration) {
+    std::vector<double> errors(static_cast<std::size_t>(n));
+    for (Eigen::Index i = 0; i < n; ++i) {
+      std::vector<Eigen::Index> others;
+      for (Eigen::Index k = 0; k < n; ++k) {
+        if (k != i)
+          others.push_back(k);
+      }
+      const ReferencePairs training = select_pairs(pairs, others);
+      Eigen::VectorXd training_weights(n - 1);
+      for (Eigen::Index k = 0; k < n - 1; ++k)
+        training_weights[k] = weights[others[static_cast<std::size_t>(k)]];
+      try {
+        const ThinPlateSpline spline = ThinPlateSpline::fit(
+            training.points_in_plan, training.points_in_grid, {lambda}, training_weights);
+        errors[static_cast<std::size_t>(i)] =
+            (spline.evaluate(pairs.points_in_plan.col(i)) - pairs.points_in_grid.col(i)).norm();
+      } catch (const InputError&) {
+        return Eigen::VectorXd::Ones(n);  // a training set the spline refuses: no reweighting
+      }
+    }
+    std::vector<double> sorted = errors;
+    const double limit = o.robust_cutoff * upper_median(sorted);
+    if (!(limit > 0.0))
+      break;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const double e = errors[static_cast<std::size_t>(i)];
+      weights[i] = e > limit ? (limit / e) * (limit / e) : 1.0;
+    }
+  }
+  return weights;
+}
+
+/// The robust weights of `pairs` for a spline of `lambda` when they apply (lambda > 0, 5 to
+/// robust_max_pairs pairs), else none.
+Eigen::VectorXd weights_for(const ReferencePairs& pairs, double lambda,
+                            const ThinPlateSplineModelOptions& o) {
+  const auto n = static_cast<std::size_t>(pairs.size());
+  if (!(lambda > 0.0) || o.robust_iterations <= 0 || n > o.robust_max_pairs || n < 5)
+    return {};
+  return robust_weights(pairs, lambda, o);
+}
+
+/// Mean held-out error of a spline with `lambda` over `folds` of `pairs`, each fold fitted as
+/// fit_model fits (robustly when the fold is a few pairs).
+double cross_validated_error(const ReferencePairs& pairs, const Folds& folds, double lambda,
+                             const ThinPlateSplineModelOptions& o) {
   double sum = 0.0;
   std::size_t count = 0;
   for (std::size_t fold = 0; fold < folds.count; ++fold) {
@@ -46,8 +97,8 @@ double cross_validated_error(const ReferencePairs& pairs, const Folds& folds, do
     folds.split(fold, train, test);
     const ReferencePairs t = select_pairs(pairs, train);
     try {
-      const ThinPlateSpline spline =
-          ThinPlateSpline::fit(t.points_in_plan, t.points_in_grid, {lambda});
+      const ThinPlateSpline spline = ThinPlateSpline::fit(t.points_in_plan, t.points_in_grid,
+                                                          {lambda}, weights_for(t, lambda, o));
       for (const Eigen::Index i : test) {
         sum += (spline.evaluate(pairs.points_in_plan.col(i)) - pairs.points_in_grid.col(i)).norm();
         ++count;
@@ -90,7 +141,7 @@ double ThinPlateSplineMapping::choose_regularization(const ReferencePairs& pairs
   }
   double best = 0.0, best_error = std::numeric_limits<double>::infinity();
   for (const double lambda : {0.0, 1e-3, 1e-2, 0.1, 1.0, 3.0, 10.0, 30.0, 100.0, 300.0, 1000.0}) {
-    const double error = cross_validated_error(sample, folds, lambda);
+    const double error = cross_validated_error(sample, folds, lambda, options_);
     table[fmt_lambda(lambda)] = std::isfinite(error) ? Value(error) : Value(nullptr);
     if (error < best_error) {
       best_error = error;
@@ -100,61 +151,14 @@ double ThinPlateSplineMapping::choose_regularization(const ReferencePairs& pairs
   return best * static_cast<double>(pairs.size()) / static_cast<double>(sample.size());
 }
 
-namespace {
-
-/// Robust weights of the pairs for a spline of `lambda` (see
-/// ThinPlateSplineModelOptions::robust_max_pairs); all 1 when no pair stands out.
-Eigen::VectorXd robust_weights(const ReferencePairs& pairs, double lambda,
-                               const ThinPlateSplineModelOptions& o) {
-  const Eigen::Index n = pairs.size();
-  Eigen::VectorXd weights = Eigen::VectorXd::Ones(n);
-  for (int iteration = 0; iteration < o.robust_iterations; ++iteration) {
-    std::vector<double> errors(static_cast<std::size_t>(n));
-    for (Eigen::Index i = 0; i < n; ++i) {
-      std::vector<Eigen::Index> others;
-      for (Eigen::Index k = 0; k < n; ++k) {
-        if (k != i)
-          others.push_back(k);
-      }
-      const ReferencePairs training = select_pairs(pairs, others);
-      Eigen::VectorXd training_weights(n - 1);
-      for (Eigen::Index k = 0; k < n - 1; ++k)
-        training_weights[k] = weights[others[static_cast<std::size_t>(k)]];
-      try {
-        const ThinPlateSpline spline = ThinPlateSpline::fit(
-            training.points_in_plan, training.points_in_grid, {lambda}, training_weights);
-        errors[static_cast<std::size_t>(i)] =
-            (spline.evaluate(pairs.points_in_plan.col(i)) - pairs.points_in_grid.col(i)).norm();
-      } catch (const InputError&) {
-        return Eigen::VectorXd::Ones(n);  // a training set the spline refuses: no reweighting
-      }
-    }
-    std::vector<double> sorted = errors;
-    const double limit = o.robust_cutoff * upper_median(sorted);
-    if (!(limit > 0.0))
-      break;
-    for (Eigen::Index i = 0; i < n; ++i) {
-      const double e = errors[static_cast<std::size_t>(i)];
-      weights[i] = e > limit ? (limit / e) * (limit / e) : 1.0;
-    }
-  }
-  return weights;
-}
-
-}  // namespace
-
 ThinPlateSplineMapping::~ThinPlateSplineMapping() = default;
 
 void ThinPlateSplineMapping::fit_model(const ReferencePairs& pairs, FitSummary& summary) {
   Value table = Value::object();
   const double lambda =
       options_.regularization ? *options_.regularization : choose_regularization(pairs, table);
-  Eigen::VectorXd weights;
-  const bool robust = lambda > 0.0 && options_.robust_iterations > 0 &&
-                      static_cast<std::size_t>(pairs.size()) <= options_.robust_max_pairs &&
-                      pairs.size() >= 5;
-  if (robust)
-    weights = robust_weights(pairs, lambda, options_);
+  const Eigen::VectorXd weights = weights_for(pairs, lambda, options_);
+  const bool robust = weights.size() > 0;
   spline_.emplace(
       ThinPlateSpline::fit(pairs.points_in_plan, pairs.points_in_grid, {lambda}, weights));
   const Eigen::Matrix2Xd residual =
