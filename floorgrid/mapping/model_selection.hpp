@@ -91,9 +91,9 @@ struct AutoOptions {
 };
 
 /// `auto`: the candidate with the lowest cross-validated mean error (spatially blocked folds
-/// by default, see cross_validate; for runs, the lowest paired_scores), refitted on all pairs; the table of
-/// every candidate's error is kept in the fit's details and the model file, with how it was
-/// cross-validated.
+/// by default, see cross_validate; for runs, the lowest paired_scores), refitted on all pairs; the
+/// table of every candidate's error is kept in the fit's details and the model file, with how it
+/// was cross-validated.
 class AutoMapping : public PointMapping {
  public:
   /// An auto model choosing among `options.auto_select.candidates`, each built from `options`.
