@@ -18,9 +18,9 @@ struct GridmapLocalization {
 /// Step 1 of localize_dual: the gridmap filter localizes globally from its best hypotheses for
 /// the first scan (or tracks from the given start) and runs through the log, re-seeded
 /// whenever it diverges: around its last converged pose first, globally from the scan's best
-/// hypotheses when that fails (GridmapLocalizationOptions::restart_near_scans). Fills every ScanRecord::grid, the
-/// gridmap's divergences, corrections and timings of `result`; a filter not converged within
-/// GridmapLocalizationOptions::max_global_scans sets `result.status`.
+/// hypotheses when that fails (GridmapLocalizationOptions::restart_near_scans). Fills every
+/// ScanRecord::grid, the gridmap's divergences, corrections and timings of `result`; a filter not
+/// converged within GridmapLocalizationOptions::max_global_scans sets `result.status`.
 GridmapLocalization localize_on_gridmap(const DualMaps& maps, const DualLocalizerInputs& inputs,
                                         const DualLocalizerOptions& options,
                                         DualLocalization& result,
