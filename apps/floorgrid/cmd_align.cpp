@@ -1,6 +1,5 @@
 // `floorgrid align DATASET --out DIR`: pairs, every model fitted and judged, overlays, metrics.
 #include <fmt/format.h>
-#include <spdlog/spdlog.h>
 
 #include <chrono>
 
@@ -21,10 +20,7 @@ void run_align(const std::string& dataset, const std::string& out, const JobOpti
   const auto load_start = std::chrono::steady_clock::now();
   const io::LoadedDataset d =
       io::load_dataset(dataset, options.raster, options.limits, options.units);
-  for (const std::string& w : d.warnings)
-    spdlog::warn("{}", w);
-  if (d.unit_decision && !d.unit_decision->overruled)
-    spdlog::info("{}: {}", d.manifest.floorplan.string(), d.unit_decision->reason);
+  report_loading(d);
   io::AlignmentTimings timings;
   timings.load =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - load_start).count();

@@ -1,6 +1,5 @@
 // `floorgrid pairs DATASET --out pairs.csv`: reference pairs by dual Monte Carlo localization.
 #include <fmt/format.h>
-#include <spdlog/spdlog.h>
 
 #include <chrono>
 
@@ -37,8 +36,7 @@ void add_pairs_command(CLI::App& root) {
     const io::OutputFolder out_folder(out.parent_path().empty() ? "." : out.parent_path());
     const io::LoadedDataset d =
         io::load_dataset(args->dataset, options.raster, options.limits, options.units);
-    for (const std::string& w : d.warnings)
-      spdlog::warn("{}", w);
+    report_loading(d);
     ProgressLine progress;
     const DualLocalizerInputs inputs = dual_inputs(d);
     const DualLocalization l =

@@ -1,6 +1,7 @@
 #include "apps/floorgrid/dataset_run.hpp"
 
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
 #include "floorgrid/core/error.hpp"
 
@@ -10,6 +11,13 @@ std::optional<StartPoses> start_poses(const io::LoadedDataset& dataset) {
   if (!dataset.manifest.initial_pose)
     return std::nullopt;
   return StartPoses{dataset.manifest.initial_pose->plan, dataset.manifest.initial_pose->grid};
+}
+
+void report_loading(const io::LoadedDataset& d) {
+  for (const std::string& w : d.warnings)
+    spdlog::warn("{}", w);
+  if (d.unit_decision && !d.unit_decision->overruled)
+    spdlog::info("{}: {}", d.manifest.floorplan.string(), d.unit_decision->reason);
 }
 
 const RobotLog& dataset_log(const io::LoadedDataset& dataset) {

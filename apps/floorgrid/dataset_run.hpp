@@ -8,6 +8,10 @@
 
 namespace floorgrid::app {
 
+/// Logs what loading found: the readers' warnings, and the run's say on a DXF's units when it
+/// confirmed the drawing's (an overruling is among the warnings).
+void report_loading(const io::LoadedDataset& dataset);
+
 /// The manifest's initial poses, when it gives them.
 std::optional<StartPoses> start_poses(const io::LoadedDataset& dataset);
 
