@@ -766,6 +766,12 @@ void visit(OptionVisitor& v, DualCheckOptions& o) {
           {.unit = "scans",
            .doc = "Consecutive disagreeing scans before the plan filter is re-initialized",
            .choices = {}});
+  v.field("gross_factor", o.gross_factor,
+          {.unit = "",
+           .doc = "A plan filter off by this many times the re-initialization distance or heading",
+           .choices = {}});
+  v.field("gross_scans", o.gross_scans,
+          {.unit = "", .doc = "is re-initialized after this many such scans", .choices = {}});
   v.field("reconverge_scans", o.reconverge_scans,
           {.unit = "scans",
            .doc = "Unconverged scans before the plan filter is re-initialized",

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "floorgrid/pipeline/dual_pairs.hpp"
 
@@ -32,6 +33,11 @@ std::optional<PlanRestart> DualCheck::judge(std::size_t scan, ScanRecord& record
   const bool agrees = near ? off <= options_.local_reinitialize_distance &&
                                  turned <= options_.local_reinitialize_heading
                            : record.consistent;
+  const double limit = near ? options_.local_reinitialize_distance : options_.consistency_distance;
+  const double limit_heading =
+      near ? options_.local_reinitialize_heading : options_.consistency_heading;
+  const bool gross = off > options_.gross_factor * limit ||
+                     turned > std::min(std::numbers::pi, options_.gross_factor * limit_heading);
   if (plan.converged && record.consistent && plan.match.ok() && grid.match.ok())
     local_.add(scan, grid.match.pose, plan.match.pose);
   // Converged or not: a filter that flickers between converging in a wrong place and doubting
@@ -40,24 +46,26 @@ std::optional<PlanRestart> DualCheck::judge(std::size_t scan, ScanRecord& record
   // takes one disagreeing scan back). One that agrees but cannot converge (a place the plan
   // draws few of the walls the laser sees) is left to track.
   disagreeing_ = agrees ? std::max(0, disagreeing_ - 1) : disagreeing_ + 1;
+  grossly_ = gross ? grossly_ + 1 : 0;
   unconverged_ = plan.converged ? 0 : unconverged_ + 1;
   // The plan filter declared itself lost: its own recovery would search the whole plan, where
   // a drawing of walls has look-alike places; the gridmap filter knows where the robot is.
   const bool lost =
       options_.restart_when_lost && (plan.diverged || plan.state == FilterState::recovering);
-  if (!lost && disagreeing_ < options_.consistency_scans &&
-      unconverged_ < options_.reconverge_scans)
+  const bool inconsistent =
+      disagreeing_ >= options_.consistency_scans || grossly_ >= options_.gross_scans;
+  if (!lost && !inconsistent && unconverged_ < options_.reconverge_scans)
     return std::nullopt;
   PlanRestart restart{
-      .reason = lost                                         ? "lost"
-                : disagreeing_ >= options_.consistency_scans ? "inconsistent"
-                                                             : "unconverged",
+      .reason = lost           ? "lost"
+                : inconsistent ? "inconsistent"
+                               : "unconverged",
       .start = plan_start(
           expected,
           (near ? options_.local_reinitialize_sigma : options_.reinitialize_sigma) / scale_,
           near ? options_.local_reinitialize_heading_sigma : options_.reinitialize_heading_sigma,
           scale_, 0.0)};
-  disagreeing_ = unconverged_ = 0;
+  disagreeing_ = unconverged_ = grossly_ = 0;
   return restart;
 }
 

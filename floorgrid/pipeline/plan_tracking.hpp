@@ -33,6 +33,7 @@ class DualCheck {
   double scale_;
   LocalRegistration local_;
   int disagreeing_ = 0;  // consecutive scans the plan filter disagreed
+  int grossly_ = 0;      // consecutive scans it disagreed grossly
   int unconverged_ = 0;  // consecutive scans the plan filter was not converged
 };
 
