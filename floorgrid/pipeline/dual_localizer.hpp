@@ -200,7 +200,7 @@ struct DualCheckOptions {
   /// A plan filter off by more than this many times the re-initialization distance (or
   /// heading) is re-initialized after gross_scans such scans instead: the patience above is for
   /// a filter hovering about the tolerance, not for one a room away (Orebro: 4-7 m off for 10
-  /// scans after a 3 m jump between two scans).
+  /// scans after a 3 m jump between two scans). gross_scans 0: never.
   double gross_factor = 2.0;
   int gross_scans = 2;
   /// Scans a plan filter may stay unconverged (the gridmap filter converged) before it is

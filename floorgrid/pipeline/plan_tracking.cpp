@@ -52,8 +52,8 @@ std::optional<PlanRestart> DualCheck::judge(std::size_t scan, ScanRecord& record
   // a drawing of walls has look-alike places; the gridmap filter knows where the robot is.
   const bool lost =
       options_.restart_when_lost && (plan.diverged || plan.state == FilterState::recovering);
-  const bool inconsistent =
-      disagreeing_ >= options_.consistency_scans || grossly_ >= options_.gross_scans;
+  const bool inconsistent = disagreeing_ >= options_.consistency_scans ||
+                            (options_.gross_scans > 0 && grossly_ >= options_.gross_scans);
   if (!lost && !inconsistent && unconverged_ < options_.reconverge_scans)
     return std::nullopt;
   PlanRestart restart{

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "floorgrid/core/error.hpp"
+#include "floorgrid/core/validation.hpp"
 
 namespace floorgrid {
 
@@ -43,11 +44,22 @@ PlanUnitFit fit_unit(const OccupancyGrid& gridmap, const VectorFloorplan& plan, 
 
 }  // namespace
 
+void validate(const PlanUnitFitOptions& o) {
+  require_option(o.scale_margin > 1.0 && o.scale_margin <= 100.0, "units", "scale_margin",
+                 o.scale_margin, "in (1, 100]");
+  require_option(o.min_score >= -1.0 && o.min_score <= 1.0, "units", "min_score", o.min_score,
+                 "in [-1, 1]");
+  require_option(o.clear_margin >= 0.0 && o.clear_margin <= 2.0, "units", "clear_margin",
+                 o.clear_margin, "in [0, 2]");
+  require_option(o.max_cells >= 10'000, "units", "max_cells", o.max_cells, ">= 10000");
+}
+
 PlanUnitDecision fit_plan_units(const OccupancyGrid& gridmap, const VectorFloorplan& plan,
                                 PlanUnit drawn_unit,
                                 const std::vector<PlanUnitCandidate>& candidates,
                                 std::optional<double> expected_scale,
                                 const RasterizeOptions& raster, const PlanUnitFitOptions& options) {
+  validate(options);
   PlanUnitDecision d;
   d.unit = drawn_unit;
   const double expected = expected_scale.value_or(1.0);

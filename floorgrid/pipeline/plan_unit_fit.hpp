@@ -27,6 +27,9 @@ struct PlanUnitFitOptions {
   MapRegistrationOptions registration;  ///< its min_scale and max_scale are set per unit
 };
 
+/// Checks `options`; InputError naming `units.<field>` when one is out of range.
+void validate(const PlanUnitFitOptions& options);
+
 /// How well the gridmap fits the plan under one unit.
 struct PlanUnitFit {
   PlanUnit unit = PlanUnit::m;   ///< the unit tried
@@ -48,6 +51,7 @@ struct PlanUnitDecision {
 /// Registers the gridmap on the plan under each candidate unit (`plan` is in metres under
 /// `drawn_unit`), over scales near `expected_scale` only, and keeps the drawing's unit unless
 /// another one fits clearly better and well. `raster` says how the job draws the plan.
+/// InputError on bad options (validate).
 PlanUnitDecision fit_plan_units(const OccupancyGrid& gridmap, const VectorFloorplan& plan,
                                 PlanUnit drawn_unit,
                                 const std::vector<PlanUnitCandidate>& candidates,

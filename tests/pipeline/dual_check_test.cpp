@@ -44,6 +44,9 @@ TEST(DualCheck, APlanFilterARoomAwayIsReinitializedAtOnce) {
   DualCheckOptions patient = options;
   patient.gross_factor = 1e9;  // gross never: the old patience
   EXPECT_EQ(first_restart(7.0, patient), std::size_t(options.consistency_scans));
+  DualCheckOptions never = options;
+  never.gross_scans = 0;
+  EXPECT_EQ(first_restart(7.0, never), std::size_t(options.consistency_scans));
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 
 #include "floorgrid/maps/layer_filter.hpp"
 #include "floorgrid/simulation/simulator.hpp"
+#include "tests/support/expect_error.hpp"
 
 namespace floorgrid {
 namespace {
@@ -95,6 +96,24 @@ TEST(PlanUnitFit, TheDrawingsUnitIsTriedEvenWhenNotACandidate) {
   ASSERT_EQ(d.fits.size(), 3u);
   EXPECT_EQ(d.fits.front().unit, PlanUnit::m);
   EXPECT_TRUE(d.confirmed) << d.reason;
+}
+
+TEST(PlanUnitFit, BadOptionsNameTheirField) {
+  const std::vector<PlanUnitCandidate> candidates = {{PlanUnit::m, 1.0, 0.5},
+                                                     {PlanUnit::ft, 1.0, 0.5}};
+  const auto fit = [&](const PlanUnitFitOptions& o) {
+    fit_plan_units(office().gridmap, read_plan(PlanUnit::m, PlanUnit::m), PlanUnit::m, candidates,
+                   std::nullopt, RasterizeOptions{}, o);
+  };
+  PlanUnitFitOptions margin;
+  margin.scale_margin = 1.0;  // would search no scale at all
+  test::expect_input_error([&] { fit(margin); }, {"units.scale_margin"});
+  PlanUnitFitOptions score;
+  score.min_score = 2.0;
+  test::expect_input_error([&] { fit(score); }, {"units.min_score"});
+  PlanUnitFitOptions cells;
+  cells.max_cells = 10;
+  test::expect_input_error([&] { fit(cells); }, {"units.max_cells"});
 }
 
 }  // namespace
