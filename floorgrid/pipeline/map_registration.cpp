@@ -77,13 +77,14 @@ double projection_angle(const std::vector<Eigen::Vector2d>& points, double bin) 
 // of the occupied cells. The angle is where the walls' cells project sharpest: a line drawn one
 // cell wide a few degrees off the grid's axes is a staircase whose edges all run along the axes,
 // so its gradients point along the axes whatever the line's angle (a DXF plan drawn 8 degrees
-// off was taken as axis-aligned, and its long corridor's registration failed).
+// off was taken as axis-aligned, and its long corridor's registration failed). `walls` are the
+// grid's wall points (wall_points).
 struct Direction {
   double angle = 0.0;
   double strength = 0.0;
 };
 
-Direction dominant_direction(const OccupancyGrid& grid) {
+Direction dominant_direction(const OccupancyGrid& grid, const std::vector<Eigen::Vector2d>& walls) {
   cv::Mat mask(grid.height(), grid.width(), CV_32FC1, cv::Scalar(0));
   for (int iy = 0; iy < grid.height(); ++iy) {
     auto* row = mask.ptr<float>(iy);
@@ -119,7 +120,7 @@ Direction dominant_direction(const OccupancyGrid& grid) {
       window += histogram[static_cast<std::size_t>((b + d + kBins) % kBins)];
     best.strength = std::max(best.strength, window / total * kBins / 5.0);
   }
-  best.angle = projection_angle(wall_points(grid, 40000), grid.geometry().resolution);
+  best.angle = projection_angle(walls, grid.geometry().resolution);
   return best;
 }
 
@@ -392,7 +393,8 @@ MapRegistration register_maps(const OccupancyGrid& gridmap, const OccupancyGrid&
   const std::vector<Eigen::Vector2d> grid_all = wall_points(gridmap, 40000);
   const std::vector<Eigen::Vector2d> plan_all = wall_points(plan, 40000);
   const std::vector<Candidate> candidates = profile_candidates(
-      grid_all, plan_all, dominant_direction(gridmap), dominant_direction(plan), options);
+      grid_all, plan_all, dominant_direction(gridmap, grid_all), dominant_direction(plan, plan_all),
+      options);
   std::vector<ScoredSimilarity> refined;
   for (const Candidate& c : candidates)
     refined.push_back(refine_in_steps(scorer, c.transform, options.sigma));
