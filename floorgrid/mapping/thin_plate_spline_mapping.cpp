@@ -86,10 +86,8 @@ Eigen::VectorXd weights_for(const ReferencePairs& pairs, double lambda,
   return robust_weights(pairs, lambda, o);
 }
 
-/// Mean held-out error of a spline with `lambda` over `folds` of `pairs`, each fold fitted as
-/// fit_model fits (robustly when the fold is a few pairs).
-double cross_validated_error(const ReferencePairs& pairs, const Folds& folds, double lambda,
-                             const ThinPlateSplineModelOptions& o) {
+/// Mean held-out error of a spline with `lambda` over `folds` of `pairs`.
+double cross_validated_error(const ReferencePairs& pairs, const Folds& folds, double lambda) {
   double sum = 0.0;
   std::size_t count = 0;
   for (std::size_t fold = 0; fold < folds.count; ++fold) {
@@ -97,8 +95,8 @@ double cross_validated_error(const ReferencePairs& pairs, const Folds& folds, do
     folds.split(fold, train, test);
     const ReferencePairs t = select_pairs(pairs, train);
     try {
-      const ThinPlateSpline spline = ThinPlateSpline::fit(t.points_in_plan, t.points_in_grid,
-                                                          {lambda}, weights_for(t, lambda, o));
+      const ThinPlateSpline spline =
+          ThinPlateSpline::fit(t.points_in_plan, t.points_in_grid, {lambda});
       for (const Eigen::Index i : test) {
         sum += (spline.evaluate(pairs.points_in_plan.col(i)) - pairs.points_in_grid.col(i)).norm();
         ++count;
@@ -141,7 +139,7 @@ double ThinPlateSplineMapping::choose_regularization(const ReferencePairs& pairs
   }
   double best = 0.0, best_error = std::numeric_limits<double>::infinity();
   for (const double lambda : {0.0, 1e-3, 1e-2, 0.1, 1.0, 3.0, 10.0, 30.0, 100.0, 300.0, 1000.0}) {
-    const double error = cross_validated_error(sample, folds, lambda, options_);
+    const double error = cross_validated_error(sample, folds, lambda);
     table[fmt_lambda(lambda)] = std::isfinite(error) ? Value(error) : Value(nullptr);
     if (error < best_error) {
       best_error = error;
