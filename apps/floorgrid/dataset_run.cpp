@@ -16,7 +16,7 @@ std::optional<StartPoses> start_poses(const io::LoadedDataset& dataset) {
 void report_loading(const io::LoadedDataset& d) {
   for (const std::string& w : d.warnings)
     spdlog::warn("{}", w);
-  if (d.unit_decision && !d.unit_decision->overruled)
+  if (d.unit_decision && !d.unit_decision->overruled())
     spdlog::info("{}: {}", d.manifest.floorplan.string(), d.unit_decision->reason);
 }
 

@@ -7,6 +7,7 @@
 
 #include "floorgrid/core/error.hpp"
 #include "floorgrid/io/carmen_log.hpp"
+#include "floorgrid/io/describe.hpp"
 #include "floorgrid/io/image_io.hpp"
 #include "floorgrid/io/map_io.hpp"
 #include "floorgrid/io/pairs_csv.hpp"
@@ -155,14 +156,14 @@ PlanUnitDecision decide_units(const OccupancyGrid& gridmap, DxfFloorplan& dxf,
   const PlanUnit drawn = plan_unit_from_name(report.units_used).value_or(PlanUnit::m);
   PlanUnitDecision decision = fit_plan_units(gridmap, dxf.plan, drawn, report.unit_candidates,
                                              m.floorplan_scale, raster, options);
-  if (decision.overruled) {
+  if (decision.overruled()) {
     dxf.plan = dxf.plan.scaled(metres_per_unit(decision.unit) / metres_per_unit(drawn));
     report.units_used = std::string(unit_name(decision.unit));
     report.metres_per_unit = metres_per_unit(decision.unit);
     report.units_source = "run";
     report.extent_m = dxf.plan.bounds();
   }
-  if (decision.overruled || decision.confirmed)
+  if (decision.overruled() || decision.confirmed)
     report.units_confidence = "medium";
   report.units_reason += "; " + decision.reason;
   return decision;
@@ -202,7 +203,7 @@ LoadedDataset load_dataset(const std::filesystem::path& path, const PlanRasterOp
     const RasterizeOptions r = rasterize_options(raster);
     if (units_left_to_the_run(m, dxf->report)) {
       d.unit_decision = decide_units(d.gridmap, *dxf, m, r, units);
-      if (d.unit_decision->overruled)
+      if (d.unit_decision->overruled())
         d.warnings.push_back(m.floorplan.string() + ": " + d.unit_decision->reason);
     }
     try {
@@ -246,7 +247,7 @@ nlohmann::json floorplan_units_json(const LoadedDataset& d) {
   const DxfReport& r = *d.dxf_report;
   nlohmann::json candidates = nlohmann::json::array();
   for (const PlanUnitCandidate& c : r.unit_candidates) {
-    nlohmann::json j = {{"unit", unit_name(c.unit)}, {"probability", c.probability}};
+    nlohmann::json j = unit_candidate_json(c);
     if (d.unit_decision) {
       for (const PlanUnitFit& f : d.unit_decision->fits) {
         if (f.unit == c.unit && f.tried) {

@@ -74,6 +74,17 @@ json describe_map(const std::filesystem::path& path, const DescribeOptions& opti
   return j;
 }
 
+}  // namespace
+
+json unit_candidate_json(const PlanUnitCandidate& c) {
+  return {{"unit", unit_name(c.unit)},
+          {"metres_per_unit", metres_per_unit(c.unit)},
+          {"score", c.score},
+          {"probability", c.probability}};
+}
+
+namespace {
+
 json describe_dxf(const std::filesystem::path& path, const DxfReadOptions& options = {}) {
   const DxfFloorplan dxf = read_dxf(path, options);
   const DxfReport& r = dxf.report;
@@ -97,12 +108,8 @@ json describe_dxf(const std::filesystem::path& path, const DxfReadOptions& optio
             {"excluded_by_layer_filter", r.excluded_by_layer_filter},
             {"inserts_expanded", r.inserts_expanded}};
   json candidates = json::array();
-  for (const PlanUnitCandidate& c : r.unit_candidates) {
-    candidates.push_back({{"unit", unit_name(c.unit)},
-                          {"metres_per_unit", metres_per_unit(c.unit)},
-                          {"score", c.score},
-                          {"probability", c.probability}});
-  }
+  for (const PlanUnitCandidate& c : r.unit_candidates)
+    candidates.push_back(unit_candidate_json(c));
   j["unit_candidates"] = candidates;
   j["warnings"] = r.warnings;
   return j;

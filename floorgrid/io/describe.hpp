@@ -6,6 +6,7 @@
 #include <string>
 
 #include "floorgrid/geometry/pose2.hpp"
+#include "floorgrid/maps/plan_unit_choice.hpp"
 
 namespace floorgrid::io {
 
@@ -18,6 +19,10 @@ std::string to_string(FileKind kind);
 /// Tells what `path` is by its name and, where the name is ambiguous, its content.
 /// Throws InputError when it cannot tell.
 FileKind detect_file_kind(const std::filesystem::path& path);
+
+/// A unit a DXF may be in, as `info --json` (`unit_candidates`) and metrics.json
+/// (`floorplan_units.candidates`) list it: unit, metres_per_unit, score and probability.
+nlohmann::json unit_candidate_json(const PlanUnitCandidate& candidate);
 
 /// Options of describe().
 struct DescribeOptions {

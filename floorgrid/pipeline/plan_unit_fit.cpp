@@ -61,7 +61,7 @@ PlanUnitDecision fit_plan_units(const OccupancyGrid& gridmap, const VectorFloorp
                                 const RasterizeOptions& raster, const PlanUnitFitOptions& options) {
   validate(options);
   PlanUnitDecision d;
-  d.unit = drawn_unit;
+  d.drawn = d.unit = drawn_unit;
   const double expected = expected_scale.value_or(1.0);
   std::vector<PlanUnitCandidate> tried = candidates;
   if (std::none_of(tried.begin(), tried.end(),
@@ -86,7 +86,6 @@ PlanUnitDecision fit_plan_units(const OccupancyGrid& gridmap, const VectorFloorp
   if (other && other->score >= options.min_score &&
       other->score >= drawn_score + options.clear_margin) {
     d.unit = other->unit;
-    d.overruled = true;
     d.reason = fmt::format("the gridmap fits the plan in {}, not in the drawing's {}: {}; {}",
                            unit_name(other->unit), unit_name(drawn_unit), describe(*other),
                            describe(*drawn));

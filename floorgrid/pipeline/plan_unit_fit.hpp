@@ -42,10 +42,13 @@ struct PlanUnitFit {
 /// What the run says of the drawing's units.
 struct PlanUnitDecision {
   std::vector<PlanUnitFit> fits;  ///< one per candidate, the drawing's order
+  PlanUnit drawn = PlanUnit::m;   ///< the drawing's choice
   PlanUnit unit = PlanUnit::m;    ///< the unit to use: the drawing's, unless the run overrules it
-  bool overruled = false;         ///< whether `unit` differs from the drawing's choice
   bool confirmed = false;         ///< whether the drawing's unit fits clearly best (or alone fits)
   std::string reason;             ///< one sentence
+
+  /// Whether the run overruled the drawing's choice.
+  bool overruled() const { return unit != drawn; }
 };
 
 /// Registers the gridmap on the plan under each candidate unit (`plan` is in metres under

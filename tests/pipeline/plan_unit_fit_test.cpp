@@ -47,7 +47,7 @@ TEST(PlanUnitFit, TheRunOverrulesADrawingReadInTheWrongUnit) {
   const PlanUnitDecision d =
       fit_plan_units(office().gridmap, read_plan(PlanUnit::mm, PlanUnit::cm), PlanUnit::cm,
                      candidates, std::nullopt, RasterizeOptions{}, quick());
-  EXPECT_TRUE(d.overruled) << d.reason;
+  EXPECT_TRUE(d.overruled()) << d.reason;
   EXPECT_FALSE(d.confirmed);
   EXPECT_EQ(d.unit, PlanUnit::mm) << d.reason;
   const PlanUnitFit& mm = fit_of(d, PlanUnit::mm);
@@ -63,7 +63,7 @@ TEST(PlanUnitFit, TheRunConfirmsARightUnit) {
   const PlanUnitDecision d =
       fit_plan_units(office().gridmap, read_plan(PlanUnit::m, PlanUnit::m), PlanUnit::m, candidates,
                      std::nullopt, RasterizeOptions{}, quick());
-  EXPECT_FALSE(d.overruled) << d.reason;
+  EXPECT_FALSE(d.overruled()) << d.reason;
   EXPECT_TRUE(d.confirmed) << d.reason;
   EXPECT_EQ(d.unit, PlanUnit::m);
   ASSERT_EQ(d.fits.size(), 2u);
@@ -77,7 +77,7 @@ TEST(PlanUnitFit, APlanAtNoTrueSizeIsLeftToTheScaleSearch) {
   const PlanUnitDecision d =
       fit_plan_units(office().gridmap, read_plan(PlanUnit::m, PlanUnit::m, 2.0), PlanUnit::m,
                      candidates, std::nullopt, RasterizeOptions{}, quick());
-  EXPECT_FALSE(d.overruled) << d.reason;
+  EXPECT_FALSE(d.overruled()) << d.reason;
   EXPECT_FALSE(d.confirmed) << d.reason;
   EXPECT_EQ(d.unit, PlanUnit::m);
   // A given scale is where the units are tried instead.
