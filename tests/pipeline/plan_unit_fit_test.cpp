@@ -32,6 +32,16 @@ PlanUnitFitOptions quick() {
   return o;
 }
 
+// The run's decision on the office's walls drawn in `drawn_in` and read as `read_as` (at
+// `size` times their true size), between `candidates`, near `scale` (1 when unset).
+PlanUnitDecision decide(PlanUnit drawn_in, PlanUnit read_as,
+                        const std::vector<PlanUnitCandidate>& candidates, double size = 1.0,
+                        std::optional<double> scale = std::nullopt,
+                        const PlanUnitFitOptions& options = quick()) {
+  return fit_plan_units(office().gridmap, read_plan(drawn_in, read_as, size), read_as, candidates,
+                        scale, RasterizeOptions{}, options);
+}
+
 const PlanUnitFit& fit_of(const PlanUnitDecision& d, PlanUnit unit) {
   for (const PlanUnitFit& f : d.fits) {
     if (f.unit == unit)
@@ -44,9 +54,7 @@ TEST(PlanUnitFit, TheRunOverrulesADrawingReadInTheWrongUnit) {
   // Drawn in mm, read as cm (the drawing's evidence favoured cm).
   const std::vector<PlanUnitCandidate> candidates = {{PlanUnit::cm, 3.8, 0.56},
                                                      {PlanUnit::mm, 3.5, 0.40}};
-  const PlanUnitDecision d =
-      fit_plan_units(office().gridmap, read_plan(PlanUnit::mm, PlanUnit::cm), PlanUnit::cm,
-                     candidates, std::nullopt, RasterizeOptions{}, quick());
+  const PlanUnitDecision d = decide(PlanUnit::mm, PlanUnit::cm, candidates);
   EXPECT_TRUE(d.overruled()) << d.reason;
   EXPECT_FALSE(d.confirmed);
   EXPECT_EQ(d.unit, PlanUnit::mm) << d.reason;
@@ -60,9 +68,7 @@ TEST(PlanUnitFit, TheRunOverrulesADrawingReadInTheWrongUnit) {
 TEST(PlanUnitFit, TheRunConfirmsARightUnit) {
   const std::vector<PlanUnitCandidate> candidates = {{PlanUnit::m, 3.5, 0.73},
                                                      {PlanUnit::ft, 2.5, 0.27}};
-  const PlanUnitDecision d =
-      fit_plan_units(office().gridmap, read_plan(PlanUnit::m, PlanUnit::m), PlanUnit::m, candidates,
-                     std::nullopt, RasterizeOptions{}, quick());
+  const PlanUnitDecision d = decide(PlanUnit::m, PlanUnit::m, candidates);
   EXPECT_FALSE(d.overruled()) << d.reason;
   EXPECT_TRUE(d.confirmed) << d.reason;
   EXPECT_EQ(d.unit, PlanUnit::m);
@@ -74,25 +80,20 @@ TEST(PlanUnitFit, APlanAtNoTrueSizeIsLeftToTheScaleSearch) {
   // Drawn in m at twice its size: neither m nor ft fits near scale 1 (ft would need 1.64).
   const std::vector<PlanUnitCandidate> candidates = {{PlanUnit::m, 3.5, 0.73},
                                                      {PlanUnit::ft, 2.5, 0.27}};
-  const PlanUnitDecision d =
-      fit_plan_units(office().gridmap, read_plan(PlanUnit::m, PlanUnit::m, 2.0), PlanUnit::m,
-                     candidates, std::nullopt, RasterizeOptions{}, quick());
+  const PlanUnitDecision d = decide(PlanUnit::m, PlanUnit::m, candidates, 2.0);
   EXPECT_FALSE(d.overruled()) << d.reason;
   EXPECT_FALSE(d.confirmed) << d.reason;
   EXPECT_EQ(d.unit, PlanUnit::m);
   // A given scale is where the units are tried instead.
   const PlanUnitDecision given =
-      fit_plan_units(office().gridmap, read_plan(PlanUnit::m, PlanUnit::m, 2.0), PlanUnit::m,
-                     candidates, 0.5 / office().plan_scale, RasterizeOptions{}, quick());
+      decide(PlanUnit::m, PlanUnit::m, candidates, 2.0, 0.5 / office().plan_scale);
   EXPECT_TRUE(given.confirmed) << given.reason;
 }
 
 TEST(PlanUnitFit, TheDrawingsUnitIsTriedEvenWhenNotACandidate) {
   const std::vector<PlanUnitCandidate> candidates = {{PlanUnit::cm, 3.0, 0.9},
                                                      {PlanUnit::in, 1.0, 0.1}};
-  const PlanUnitDecision d =
-      fit_plan_units(office().gridmap, read_plan(PlanUnit::m, PlanUnit::m), PlanUnit::m, candidates,
-                     std::nullopt, RasterizeOptions{}, quick());
+  const PlanUnitDecision d = decide(PlanUnit::m, PlanUnit::m, candidates);
   ASSERT_EQ(d.fits.size(), 3u);
   EXPECT_EQ(d.fits.front().unit, PlanUnit::m);
   EXPECT_TRUE(d.confirmed) << d.reason;
@@ -102,8 +103,7 @@ TEST(PlanUnitFit, BadOptionsNameTheirField) {
   const std::vector<PlanUnitCandidate> candidates = {{PlanUnit::m, 1.0, 0.5},
                                                      {PlanUnit::ft, 1.0, 0.5}};
   const auto fit = [&](const PlanUnitFitOptions& o) {
-    fit_plan_units(office().gridmap, read_plan(PlanUnit::m, PlanUnit::m), PlanUnit::m, candidates,
-                   std::nullopt, RasterizeOptions{}, o);
+    decide(PlanUnit::m, PlanUnit::m, candidates, 1.0, std::nullopt, o);
   };
   PlanUnitFitOptions margin;
   margin.scale_margin = 1.0;  // would search no scale at all
