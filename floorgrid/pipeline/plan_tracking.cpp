@@ -30,12 +30,12 @@ std::optional<PlanRestart> DualCheck::judge(std::size_t scan, ScanRecord& record
     record.consistent =
         off <= options_.consistency_distance && turned <= options_.consistency_heading;
   }
-  const bool agrees = near ? off <= options_.local_reinitialize_distance &&
-                                 turned <= options_.local_reinitialize_heading
-                           : record.consistent;
+  // Beyond these the plan filter disagrees (the global check's are its consistency's); beyond
+  // gross_factor times them, grossly.
   const double limit = near ? options_.local_reinitialize_distance : options_.consistency_distance;
   const double limit_heading =
       near ? options_.local_reinitialize_heading : options_.consistency_heading;
+  const bool agrees = off <= limit && turned <= limit_heading;
   const bool gross = off > options_.gross_factor * limit ||
                      turned > std::min(std::numbers::pi, options_.gross_factor * limit_heading);
   if (plan.converged && record.consistent && plan.match.ok() && grid.match.ok())
