@@ -392,9 +392,9 @@ MapRegistration register_maps(const OccupancyGrid& gridmap, const OccupancyGrid&
 
   const std::vector<Eigen::Vector2d> grid_all = wall_points(gridmap, 40000);
   const std::vector<Eigen::Vector2d> plan_all = wall_points(plan, 40000);
-  const std::vector<Candidate> candidates = profile_candidates(
-      grid_all, plan_all, dominant_direction(gridmap, grid_all), dominant_direction(plan, plan_all),
-      options);
+  const std::vector<Candidate> candidates =
+      profile_candidates(grid_all, plan_all, dominant_direction(gridmap, grid_all),
+                         dominant_direction(plan, plan_all), options);
   std::vector<ScoredSimilarity> refined;
   for (const Candidate& c : candidates)
     refined.push_back(refine_in_steps(scorer, c.transform, options.sigma));
