@@ -64,8 +64,11 @@ void simulate_log_dataset(const Args& a) {
                     : "raster",
       d.plan_raster.width(), d.plan_raster.height(), *o.plan_scale, d.plan_raster.resolution(),
       s.rotation_deg, s.wall_thickness_px, s.clutter_cells);
-  fmt::print("  warp      bend {:.2f} m (max strain {:.2f}%)\n", s.bend_deviation,
-             100.0 * s.max_bend_strain);
+  fmt::print(
+      "  warp      bend {:.2f} m (max strain {:.2f}%); the best global fit's floorplan_scale "
+      "{:.4f} ({:+.3f}%)\n",
+      s.bend_deviation, 100.0 * s.max_bend_strain, *o.plan_scale * s.warp_fit_scale,
+      100.0 * (s.warp_fit_scale - 1.0));
   fmt::print("  pairs     {} manual pairs\n", d.manual_pairs.size());
   fmt::print("wrote {} files to {} in {:.1f} s\n", files.files.size(), files.folder.string(),
              seconds);

@@ -836,6 +836,10 @@ void visit(OptionVisitor& v, MapRegistrationOptions& o) {
           {.unit = "", .doc = "Profile candidates scored in 2D and refined", .choices = {}});
   v.field("max_points", o.max_points,
           {.unit = "", .doc = "Wall points of each map scored in 2D", .choices = {}});
+  v.field("final_points", o.final_points,
+          {.unit = "",
+           .doc = "Wall points of each map in the best candidate's last refinement (0: none)",
+           .choices = {}});
   v.field("sigma", o.sigma,
           {.unit = "m", .doc = "How near a wall a point must lie to count", .choices = {}});
   v.field("free_violation_distance", o.free_violation_distance,

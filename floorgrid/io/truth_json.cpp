@@ -211,6 +211,7 @@ json log_dataset_truth_json(const LogDataset& d, const std::string& source) {
                      {"median_turn_deg", s.median_turn_deg},
                      {"bend_deviation_m", s.bend_deviation},
                      {"max_bend_strain", s.max_bend_strain},
+                     {"warp_fit_scale", s.warp_fit_scale},
                      {"wall_cells", s.wall_cells},
                      {"clutter_cells", s.clutter_cells},
                      {"plan_segments", s.plan_segments},

@@ -10,6 +10,7 @@
 #include "floorgrid/core/error.hpp"
 #include "floorgrid/core/random.hpp"
 #include "floorgrid/core/statistics.hpp"
+#include "floorgrid/geometry/transform_estimation.hpp"
 #include "floorgrid/maps/plan_units.hpp"
 #include "floorgrid/simulation/arc_bend.hpp"
 #include "floorgrid/simulation/manual_pairs.hpp"
@@ -335,6 +336,7 @@ LogDataset simulate_from_log(const RobotLog& log, const LogDatasetOptions& optio
   const BatchInverseResult inverse = warp.grid_to_world_batch(walls_in_grid);
   if (!inverse.converged)
     throw InputError("the bend is too strong for this building to invert", "", 0, "bend");
+  s.warp_fit_scale = estimate_transform(inverse.points, walls_in_grid).scale;
   Eigen::AlignedBox2d paper;
   for (Eigen::Index i = 0; i < inverse.points.cols(); ++i)
     paper.extend(inverse.points.col(i));

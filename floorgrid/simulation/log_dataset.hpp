@@ -53,9 +53,13 @@ struct LogDatasetStatistics {
   std::size_t clutter_cells = 0;   ///< occupied cells left out of the plan as clutter
   double bend_deviation = 0.0;     ///< metres, signed
   double max_bend_strain = 0.0;    ///< of the bend over the drawn walls
-  double rotation_deg = 0.0;       ///< the plan's turn against the gridmap
-  int wall_thickness_px = 0;       ///< of the drawn strokes
-  std::size_t plan_segments = 0;   ///< vector walls, when drawn
+  /// The scale of the least-squares similarity from the world to the gridmap over the drawn
+  /// walls: 1 without a bend; with one, the scale a global fit of the plan can find, so the
+  /// plan scale it can find is plan_scale times this.
+  double warp_fit_scale = 1.0;
+  double rotation_deg = 0.0;      ///< the plan's turn against the gridmap
+  int wall_thickness_px = 0;      ///< of the drawn strokes
+  std::size_t plan_segments = 0;  ///< vector walls, when drawn
 };
 
 /// A semi-real dataset: the real run and its real map, a plan drawn from that map through a

@@ -157,6 +157,18 @@ TEST(LogDataset, ManualPairsAndStartFollowTheTruth) {
   EXPECT_NEAR(std::abs(d.statistics.bend_deviation), 0.5, 1e-9);
 }
 
+// The warp's best global similarity: without a bend the warp is one (scale 1); a bend stretches
+// the walls on one side of its axis and shrinks them on the other, so the best similarity's
+// scale moves from 1, but by less than the largest strain.
+TEST(LogDataset, TheWarpsBestSimilarityScaleStaysWithinItsStrain) {
+  EXPECT_NEAR(simulate_from_log(shared_log(), fixed(1.3, 20.0, 0.0)).statistics.warp_fit_scale, 1.0,
+              1e-12);
+  const LogDataset bent = simulate_from_log(shared_log(), fixed(1.3, 20.0, 1.0));
+  ASSERT_GT(bent.statistics.max_bend_strain, 0.01);
+  EXPECT_NE(bent.statistics.warp_fit_scale, 1.0);
+  EXPECT_LT(std::abs(bent.statistics.warp_fit_scale - 1.0), bent.statistics.max_bend_strain);
+}
+
 TEST(LogDataset, VectorPlanTracesTheSameWalls) {
   LogDatasetOptions o = fixed(0.8, 20.0, 0.3);
   o.vector_plan = true;
