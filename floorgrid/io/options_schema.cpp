@@ -314,6 +314,11 @@ void visit(OptionVisitor& v, AutoOptions& o) {
            .doc = "The models compared, cheapest first (ties go to the earlier one)",
            .choices = {}});
   v.group("cv", "How they are compared", [&] { visit(v, o.cv); });
+  v.field("tie_standard_errors", o.tie_standard_errors,
+          {.unit = "",
+           .doc = "By runs: an earlier candidate this many standard errors from the lowest "
+                  "score is chosen instead (0: the lowest always)",
+           .choices = {}});
 }
 
 void visit(OptionVisitor& v, ThinPlateSplineModelOptions& o) {

@@ -42,6 +42,9 @@ void validate(const CrossValidationOptions& cv, const std::string& prefix) {
 
 namespace {
 
+/// Stretches of the run the pairs are cut into for the standard error of a paired difference.
+constexpr std::size_t kPairedStretches = 40;
+
 /// The folds `cv` asks for over `pairs`, blocked in the grid frame (metres whatever the plan's
 /// units), with what was used.
 Folds deal_folds(const ReferencePairs& pairs, const CrossValidationOptions& cv,
@@ -112,13 +115,11 @@ CrossValidationResult cross_validate(const MappingOptions& options, const Refere
   return result;
 }
 
-std::vector<double> paired_scores(const std::vector<std::vector<double>>& errors, double trim) {
-  constexpr double kInfinity = std::numeric_limits<double>::infinity();
-  std::vector<double> scores(errors.size(), kInfinity);
+std::vector<char> paired_pairs_kept(const std::vector<std::vector<double>>& errors, double trim) {
   if (errors.empty())
-    return scores;
+    return {};
   const std::size_t n = errors.front().size();
-  std::vector<double> typical(n, kInfinity), finite;
+  std::vector<double> typical(n, std::numeric_limits<double>::infinity()), finite;
   for (std::size_t i = 0; i < n; ++i) {
     std::vector<double> at;
     for (const std::vector<double>& model : errors) {
@@ -130,23 +131,68 @@ std::vector<double> paired_scores(const std::vector<std::vector<double>>& errors
       finite.push_back(typical[i]);
     }
   }
+  std::vector<char> kept(n, 0);
   if (finite.empty())
-    return scores;
+    return kept;
   const double limit = trim * upper_median(finite);
+  for (std::size_t i = 0; i < n; ++i)
+    kept[i] = typical[i] <= limit ? 1 : 0;
+  return kept;
+}
+
+std::vector<double> paired_scores(const std::vector<std::vector<double>>& errors, double trim) {
+  constexpr double kInfinity = std::numeric_limits<double>::infinity();
+  std::vector<double> scores(errors.size(), kInfinity);
+  const std::vector<char> kept = paired_pairs_kept(errors, trim);
   for (std::size_t m = 0; m < errors.size(); ++m) {
-    if (errors[m].size() != n)
+    if (errors[m].size() != kept.size())
       continue;
     double sum = 0.0;
-    std::size_t kept = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-      if (typical[i] <= limit) {
+    std::size_t count = 0;
+    for (std::size_t i = 0; i < kept.size(); ++i) {
+      if (kept[i] != 0) {
         sum += errors[m][i] * errors[m][i];
-        ++kept;
+        ++count;
       }
     }
-    scores[m] = kept > 0 && std::isfinite(sum) ? sum / static_cast<double>(kept) : kInfinity;
+    scores[m] = count > 0 && std::isfinite(sum) ? sum / static_cast<double>(count) : kInfinity;
   }
   return scores;
+}
+
+double paired_score_difference_se(const std::vector<double>& a, const std::vector<double>& b,
+                                  const std::vector<char>& kept, std::size_t stretches) {
+  constexpr double kInfinity = std::numeric_limits<double>::infinity();
+  const std::size_t n = kept.size();
+  if (a.size() != n || b.size() != n || stretches < 2)
+    return kInfinity;
+  // Per stretch: its kept pairs and the sum of their differences of squared errors.
+  std::vector<double> sums(stretches, 0.0), counts(stretches, 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (kept[i] == 0)
+      continue;
+    const double d = a[i] * a[i] - b[i] * b[i];
+    if (!std::isfinite(d))
+      return kInfinity;
+    const std::size_t s = i * stretches / n;
+    sums[s] += d;
+    counts[s] += 1.0;
+  }
+  double total = 0.0, count = 0.0, used = 0.0;
+  for (std::size_t s = 0; s < stretches; ++s) {
+    total += sums[s];
+    count += counts[s];
+    used += counts[s] > 0.0 ? 1.0 : 0.0;
+  }
+  if (used < 2.0)
+    return kInfinity;
+  // The variance of a ratio of sums over independent stretches (the mean difference is
+  // total / count): sum over stretches of (sum_s - mean count_s)^2, times used / (used - 1).
+  const double mean = total / count;
+  double spread = 0.0;
+  for (std::size_t s = 0; s < stretches; ++s)
+    spread += (sums[s] - mean * counts[s]) * (sums[s] - mean * counts[s]);
+  return std::sqrt(spread * used / (used - 1.0)) / count;
 }
 
 std::vector<double> leave_one_out_errors(const MappingOptions& options,
@@ -184,6 +230,10 @@ AutoMapping::AutoMapping(const MappingOptions& options)
     throw InputError("needs at least one candidate", {}, 0, "auto.candidates");
   }
   validate(options_->auto_select.cv, "auto_select.cv.");
+  require_option(options_->auto_select.tie_standard_errors >= 0.0 &&
+                     options_->auto_select.tie_standard_errors <= 100.0,
+                 "auto_select.tie_standard_errors", options_->auto_select.tie_standard_errors,
+                 "in [0, 100]");
 }
 
 AutoMapping::~AutoMapping() = default;
@@ -192,6 +242,8 @@ void AutoMapping::fit_model(const ReferencePairs& pairs, FitSummary& summary) {
   table_.clear();
   std::string best;
   double best_error = std::numeric_limits<double>::infinity();
+  CrossValidationRecord best_method;
+  std::vector<HeldOutResidual> best_held_out;
   // Runs are compared pair by pair (paired_scores): trimmed of the stretches the filters got
   // wrong, which would weigh on every model's mean alike, and most on the smooth models that
   // do not follow it (Orebro: the mean picks gpgt, 2.8x the best); by mean squared error, whose
@@ -209,15 +261,38 @@ void AutoMapping::fit_model(const ReferencePairs& pairs, FitSummary& summary) {
                           : cross_validate(candidate, pairs, options_->auto_select.cv));
   }
   std::vector<double> scores;
-  if (paired) {
-    std::vector<std::vector<double>> errors;
-    for (const CrossValidationResult& cv : results)
-      errors.push_back(cv.pair_errors);
-    scores = paired_scores(errors);
+  std::vector<std::vector<double>> errors;
+  for (const CrossValidationResult& cv : results) {
+    scores.push_back(cv.mean_error_m);
+    errors.push_back(cv.pair_errors);
   }
-  double best_score = std::numeric_limits<double>::infinity();
-  CrossValidationRecord best_method;
-  std::vector<HeldOutResidual> best_held_out;
+  if (paired)
+    scores = paired_scores(errors);
+  // The lowest score (the earlier on ties); by runs then the earliest candidate within
+  // tie_standard_errors of it: a difference the pairs' noise could make is no reason to leave
+  // the cheaper model.
+  std::size_t lowest = results.size();
+  for (std::size_t k = 0; k < results.size(); ++k) {
+    if (std::isfinite(scores[k]) && (lowest == results.size() || scores[k] < scores[lowest]))
+      lowest = k;
+  }
+  std::vector<double> standard_errors(results.size(), 0.0);
+  std::size_t pick = lowest;
+  if (paired && lowest < results.size() && options_->auto_select.tie_standard_errors > 0.0) {
+    const std::vector<char> kept = paired_pairs_kept(errors);
+    for (std::size_t k = 0; k < results.size(); ++k) {
+      standard_errors[k] = k == lowest ? 0.0
+                                       : paired_score_difference_se(errors[k], errors[lowest], kept,
+                                                                    kPairedStretches);
+    }
+    for (std::size_t k = 0; k < lowest; ++k) {
+      if (scores[k] <=
+          scores[lowest] + options_->auto_select.tie_standard_errors * standard_errors[k]) {
+        pick = k;
+        break;
+      }
+    }
+  }
   for (std::size_t k = 0; k < results.size(); ++k) {
     const std::string& name = options_->auto_select.candidates[k];
     const CrossValidationResult& cv = results[k];
@@ -229,15 +304,16 @@ void AutoMapping::fit_model(const ReferencePairs& pairs, FitSummary& summary) {
     if (paired) {
       table[name]["paired_rms_m"] =
           std::isfinite(scores[k]) ? Value(std::sqrt(scores[k])) : Value();
+      // The standard error of its mean squared error's difference from the lowest's, m^2.
+      table[name]["paired_difference_se_m2"] =
+          std::isfinite(standard_errors[k]) ? Value(standard_errors[k]) : Value();
     }
-    const double score = paired ? scores[k] : cv.mean_error_m;
-    if (score < best_score) {
-      best_score = score;
-      best_error = cv.mean_error_m;
-      best = name;
-      best_method = cv.method;
-      best_held_out = cv.held_out;
-    }
+  }
+  if (pick < results.size()) {
+    best = options_->auto_select.candidates[pick];
+    best_error = results[pick].mean_error_m;
+    best_method = results[pick].method;
+    best_held_out = results[pick].held_out;
   }
   if (best.empty())
     throw InputError("no candidate model could be fitted to the pairs", {}, 0, "pairs");

@@ -69,6 +69,18 @@ struct CrossValidationResult {
 std::vector<double> paired_scores(const std::vector<std::vector<double>>& errors,
                                   double trim = 3.0);
 
+/// Which pairs paired_scores keeps (1) for `errors` and `trim`.
+std::vector<char> paired_pairs_kept(const std::vector<std::vector<double>>& errors,
+                                    double trim = 3.0);
+
+/// The standard error of the difference of two models' paired scores (mean squared held-out
+/// errors `a` and `b` over the `kept` pairs): the pairs, in run order, cut into `stretches`
+/// consecutive stretches whose errors may be correlated within but not between them, the
+/// spread of the stretches' summed differences (a ratio estimator). Infinite with fewer than
+/// two stretches holding kept pairs, sizes that differ, or an infinite error on a kept pair.
+double paired_score_difference_se(const std::vector<double>& a, const std::vector<double>& b,
+                                  const std::vector<char>& kept, std::size_t stretches);
+
 /// k-fold cross-validation of the model `options` names: pairs are merged, binned to
 /// max_pairs, and dealt into k folds (seeded by options.common.seed): by default whole square
 /// blocks of the grid frame per fold (blocked_folds), or at random; each fold is predicted by
@@ -88,10 +100,15 @@ struct AutoOptions {
   /// candidates by default.
   std::vector<std::string> candidates = auto_candidates();
   CrossValidationOptions cv;  ///< how they are compared
+  /// Compared by runs, an earlier candidate whose paired score exceeds the lowest by at most
+  /// this many standard errors of the difference (paired_score_difference_se) is chosen
+  /// instead (the one-standard-error rule; 0: the lowest score always).
+  double tie_standard_errors = 1.0;
 };
 
 /// `auto`: the candidate with the lowest cross-validated mean error (spatially blocked folds
-/// by default, see cross_validate; for runs, the lowest paired_scores), refitted on all pairs; the
+/// by default, see cross_validate; for runs, the lowest paired_scores, or an earlier candidate
+/// within tie_standard_errors of it), refitted on all pairs; the
 /// table of every candidate's error is kept in the fit's details and the model file, with how it
 /// was cross-validated.
 class AutoMapping : public PointMapping {

@@ -337,6 +337,67 @@ TEST(RunsCrossValidation, AutoPicksByPairedScoresAndOtherwiseByTheMean) {
   EXPECT_EQ(chosen(CrossValidationKind::blocked), "dt");
 }
 
+// The standard error of a paired difference, against hand-computed cases: a difference the
+// same on every stretch has none; stretches of m pairs alternating +x and -x (mean 0) have
+// sqrt(C (m x)^2 C / (C - 1)) / (C m) = x / sqrt(C - 1) over C stretches.
+TEST(PairedScores, TheStandardErrorOfADifferenceComesFromItsSpreadOverStretches) {
+  const std::vector<char> all(100, 1);
+  const std::vector<double> a(100, 0.04), b(100, 0.03);
+  EXPECT_NEAR(paired_score_difference_se(a, b, all, 4), 0.0, 1e-15);
+  // Stretches of 25 pairs whose differences of squares are +x, -x, +x, -x.
+  const double x = 0.04 * 0.04 - 0.03 * 0.03;
+  std::vector<double> alternating(100);
+  for (std::size_t i = 0; i < 100; ++i)
+    alternating[i] = (i / 25) % 2 == 0 ? 0.04 : std::sqrt(0.03 * 0.03 - x);
+  EXPECT_NEAR(paired_score_difference_se(alternating, b, all, 4), x / std::sqrt(3.0), 1e-12);
+  // Pairs left out do not count: the first two stretches kept, one +x and one -x.
+  std::vector<char> half(100, 0);
+  std::fill(half.begin(), half.begin() + 50, 1);
+  EXPECT_NEAR(paired_score_difference_se(alternating, b, half, 4), x, 1e-12);
+  // Undefined: one stretch, sizes that differ, an infinite error on a kept pair.
+  EXPECT_TRUE(std::isinf(paired_score_difference_se(a, b, all, 1)));
+  EXPECT_TRUE(std::isinf(paired_score_difference_se(a, {0.1}, all, 4)));
+  std::vector<double> failed = a;
+  failed[7] = std::numeric_limits<double>::infinity();
+  EXPECT_TRUE(std::isinf(paired_score_difference_se(failed, b, all, 4)));
+}
+
+// One standard error: an earlier candidate whose paired score is above the lowest by less than
+// the noise of that difference is chosen; by more, or with the rule off, the lowest.
+TEST(RunsCrossValidation, AutoKeepsTheEarlierCandidateWithinOneStandardError) {
+  // 200 pairs in run order; dt errs 0.032 everywhere; gt's squared error is dt's plus 2e-5,
+  // plus or minus 3e-4 by stretches of 10 pairs: dt scores lower, by much less than the
+  // stretches' spread (its standard error is about 3e-4 / sqrt(39) = 4.8e-5).
+  const double dt_square = 0.032 * 0.032;
+  CrossValidationResult gt, dt;
+  for (std::size_t i = 0; i < 200; ++i) {
+    gt.pair_errors.push_back(std::sqrt(dt_square + 2e-5 + ((i / 10) % 2 == 0 ? 3e-4 : -3e-4)));
+    dt.pair_errors.push_back(0.032);
+  }
+  gt.mean_error_m = dt.mean_error_m = 0.032;
+  const std::vector<double> scores = paired_scores({gt.pair_errors, dt.pair_errors});
+  ASSERT_NEAR(scores[0] - scores[1], 2e-5, 1e-12);
+  MappingOptions options;
+  options.model = "auto";
+  options.auto_select.candidates = {"gt", "dt"};
+  options.auto_select.cv.kind = CrossValidationKind::runs;
+  const auto chosen = [&](double tie_standard_errors, const CrossValidationResult& first) {
+    options.auto_select.tie_standard_errors = tie_standard_errors;
+    auto model = make_mapping(options);
+    dynamic_cast<AutoMapping&>(*model).reuse_cross_validation({{"gt", first}, {"dt", dt}});
+    model->fit(two_passes());
+    return model->summary().details.find("chosen")->as_string();
+  };
+  EXPECT_EQ(chosen(1.0, gt), "gt");
+  EXPECT_EQ(chosen(0.0, gt), "dt");
+  // gt worse by the same margin on every pair: no noise hides it, dt.
+  CrossValidationResult steady = gt;
+  std::fill(steady.pair_errors.begin(), steady.pair_errors.end(), std::sqrt(dt_square + 2e-5));
+  EXPECT_EQ(chosen(1.0, steady), "dt");
+  options.auto_select.tie_standard_errors = -1.0;
+  test::expect_input_error([&] { make_mapping(options); }, {"auto_select.tie_standard_errors"});
+}
+
 TEST(BlockedCrossValidation, RefusesANegativeBlockAndTooFewFolds) {
   MappingOptions gt;
   gt.model = "gt";
