@@ -24,7 +24,13 @@ struct PlanUnitFitOptions {
   /// A candidate's plan is rasterized at the job's resolution, coarser when it would need more
   /// cells than this (a unit that makes the building a kilometre wide).
   std::size_t max_cells = 16'000'000;
-  MapRegistrationOptions registration;  ///< its min_scale and max_scale are set per unit
+  /// Its min_scale and max_scale are set per unit; no last refinement on every wall point (the
+  /// units need the score, not the scale to 0.1%).
+  MapRegistrationOptions registration = [] {
+    MapRegistrationOptions o;
+    o.final_points = 0;
+    return o;
+  }();
 };
 
 /// Checks `options`; InputError naming `units.<field>` when one is out of range.

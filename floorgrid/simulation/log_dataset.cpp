@@ -67,33 +67,53 @@ cv::Mat mask_of(const OccupancyGrid& grid, CellState state) {
   return mask;
 }
 
-// The walls a drafter would draw from the gridmap: occupied blobs (gaps of 0.2 m closed) at
-// least `min_extent` metres across, thickened by `thickness - 1` cells into space the laser never
-// saw free (so the wall's surface stays where the laser found it: see drawn_as_wall).
+// The walls a drafter would draw from the gridmap: occupied blobs, counting cells up to 0.2 m
+// apart as one, at least `min_extent` metres across (smaller ones are clutter), their gaps of up
+// to 0.2 m closed where a closing closes them, thickened by `thickness - 1` cells into space the
+// laser never saw free (so the wall's surface stays where the laser found it: see
+// drawn_as_wall).
 cv::Mat drawn_walls(const OccupancyGrid& gridmap, double min_extent, int thickness,
                     LogDatasetStatistics& s) {
-  // A drafter draws a wall seen as dots (sparse scans) as one stroke: gaps up to 0.2 m close.
-  cv::Mat occupied;
+  const cv::Mat cells = mask_of(gridmap, CellState::occupied);
   const int gap = std::max(1, static_cast<int>(std::lround(0.1 / gridmap.resolution())));
-  cv::morphologyEx(mask_of(gridmap, CellState::occupied), occupied, cv::MORPH_CLOSE,
-                   cv::getStructuringElement(cv::MORPH_ELLIPSE, {2 * gap + 1, 2 * gap + 1}));
-  cv::Mat labels, stats, centroids;
-  const int count = cv::connectedComponentsWithStats(occupied, labels, stats, centroids, 8, CV_32S);
+  const cv::Mat disk = cv::getStructuringElement(cv::MORPH_ELLIPSE, {2 * gap + 1, 2 * gap + 1});
+  // A wall seen as dots (sparse scans, beams grazing it) is one wall. Blobs are found on the
+  // cells dilated by half the gap: a closing alone does not join the dots of a one-cell line
+  // (no disk fits between two dots), which left ACES's corridor walls out of its plan.
+  cv::Mat joined, occupied;
+  cv::dilate(cells, joined, disk);
+  cv::morphologyEx(cells, occupied, cv::MORPH_CLOSE, disk);
+  cv::Mat labels;
+  const int count = cv::connectedComponents(joined, labels, 8, CV_32S);
+  // Each blob's extent over its occupied cells.
+  std::vector<cv::Rect> extent(static_cast<std::size_t>(count));
+  for (int y = 0; y < cells.rows; ++y) {
+    const auto* row = cells.ptr<std::uint8_t>(y);
+    const int* label = labels.ptr<int>(y);
+    for (int x = 0; x < cells.cols; ++x) {
+      if (row[x] == 0)
+        continue;
+      cv::Rect& r = extent[static_cast<std::size_t>(label[x])];
+      r = r.area() == 0 ? cv::Rect(x, y, 1, 1) : (r | cv::Rect(x, y, 1, 1));
+    }
+  }
   std::vector<std::uint8_t> keep(static_cast<std::size_t>(count), 0);
   for (int label = 1; label < count; ++label) {
-    const double extent = std::hypot(stats.at<int>(label, cv::CC_STAT_WIDTH),
-                                     stats.at<int>(label, cv::CC_STAT_HEIGHT)) *
-                          gridmap.resolution();
-    const auto cells = static_cast<std::size_t>(stats.at<int>(label, cv::CC_STAT_AREA));
-    keep[static_cast<std::size_t>(label)] = extent >= min_extent ? 255 : 0;
-    (extent >= min_extent ? s.wall_cells : s.clutter_cells) += cells;
+    const cv::Rect& r = extent[static_cast<std::size_t>(label)];
+    keep[static_cast<std::size_t>(label)] =
+        std::hypot(r.width, r.height) * gridmap.resolution() >= min_extent ? 255 : 0;
   }
   cv::Mat walls(occupied.size(), CV_8UC1, cv::Scalar(0));
   for (int y = 0; y < walls.rows; ++y) {
+    const auto* closed = occupied.ptr<std::uint8_t>(y);
     const int* label = labels.ptr<int>(y);
     auto* row = walls.ptr<std::uint8_t>(y);
-    for (int x = 0; x < walls.cols; ++x)
+    for (int x = 0; x < walls.cols; ++x) {
+      if (closed[x] == 0)
+        continue;
       row[x] = keep[static_cast<std::size_t>(label[x])];
+      (row[x] != 0 ? s.wall_cells : s.clutter_cells) += 1;
+    }
   }
   if (thickness > 1) {
     const int size = 2 * (thickness - 1) + 1;

@@ -36,10 +36,23 @@ std::vector<Segment> room() {
           segment(3.0, 1.8, 3.0, 1.5)};
 }
 
+// The room with a fence across its lower left: posts 4 cm square every 15 cm from x = 3 to 5 m
+// at y = 4.2 m, a wall the laser sees as dots with free cells between them.
+std::vector<Segment> room_with_fence() {
+  std::vector<Segment> walls = room();
+  for (double x = 3.0; x <= 5.0 + 1e-9; x += 0.15) {
+    walls.push_back(segment(x, 4.18, x + 0.04, 4.18));
+    walls.push_back(segment(x + 0.04, 4.18, x + 0.04, 4.22));
+    walls.push_back(segment(x + 0.04, 4.22, x, 4.22));
+    walls.push_back(segment(x, 4.22, x, 4.18));
+  }
+  return walls;
+}
+
 // A corrected log of a loop through the room: a scan every 0.5 m and 20 degrees, as sparse as
 // the Radish logs, the poses exact.
-RobotLog room_log() {
-  const SegmentRayCaster caster(room());
+RobotLog room_log(const std::vector<Segment>& walls = room()) {
+  const SegmentRayCaster caster(walls);
   LaserSpec spec;
   spec.range_noise_sigma = 0.005;
   spec.random_reading_fraction = 0.0;
@@ -138,6 +151,33 @@ TEST(LogDataset, ClutterIsLeftOutOfThePlan) {
     for (int dx = -4; dx <= 4; ++dx)
       EXPECT_FALSE(d.plan_raster.is_occupied(ix + dx, iy + dy));
   }
+}
+
+// A wall seen as dots is drawn as a wall: the fence's posts are a few cells apart with free
+// cells between (a closing does not join the dots of a one-cell line), yet one blob 2 m long.
+TEST(LogDataset, AWallSeenAsDotsIsDrawn) {
+  const LogDataset d = simulate_from_log(room_log(room_with_fence()), fixed(1.0, 0.0, 0.0));
+  const SimulatedWarp warp(d.warp);
+  const GridGeometry& plan = d.plan_raster.geometry();
+  const auto drawn_near = [&](const Vector2d& in_grid) {
+    const Vector2d p = d.truth().world_to_plan(warp.grid_to_world(in_grid).point);
+    int ix = 0, iy = 0;
+    if (!plan.cell_of(p, ix, iy))
+      return false;
+    for (int dy = -2; dy <= 2; ++dy) {
+      for (int dx = -2; dx <= 2; ++dx) {
+        if (d.plan_raster.is_occupied(ix + dx, iy + dy))
+          return true;
+      }
+    }
+    return false;
+  };
+  int drawn = 0, probes = 0;
+  for (double x = 3.1; x <= 4.9; x += 0.1, ++probes)
+    drawn += drawn_near({x, 4.2});
+  EXPECT_GE(drawn, probes - 1) << drawn << " of " << probes;
+  // The box is still clutter.
+  EXPECT_FALSE(drawn_near({3.15, 1.65}));
 }
 
 TEST(LogDataset, ManualPairsAndStartFollowTheTruth) {
