@@ -7,6 +7,7 @@
 //     (gpgt: 0.5 m and 1 m); the default adapts the threshold to the pairs' noise.
 // Usage: mapping_accuracy_eval [models...]   (default: every model)
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -82,8 +83,17 @@ double halmstad_median_px(const fs::path& root, const std::string& model,
 
 int main(int argc, char** argv) {
   std::vector<std::string> models(argv + 1, argv + argc);
+  const std::vector<std::string> known = mapping_model_names();
+  for (const std::string& model : models) {
+    if (std::find(known.begin(), known.end(), model) == known.end()) {
+      fmt::print(stderr, "mapping_accuracy_eval: unknown model '{}' (known: {})\n"
+                         "usage: mapping_accuracy_eval [models...]   (default: every model)\n",
+                 model, fmt::join(known, ", "));
+      return 2;
+    }
+  }
   if (models.empty())
-    models = mapping_model_names();
+    models = known;
   const SimulatedDataset office = simulate("office", 1);
   const SimulatedDataset bent = simulate("bent-office", 1);
   const fs::path halmstad = fs::path(FLOORGRID_DATA_DIR) / "halmstad";
