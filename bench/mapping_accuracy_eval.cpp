@@ -86,8 +86,9 @@ int main(int argc, char** argv) {
   const std::vector<std::string> known = mapping_model_names();
   for (const std::string& model : models) {
     if (std::find(known.begin(), known.end(), model) == known.end()) {
-      fmt::print(stderr, "mapping_accuracy_eval: unknown model '{}' (known: {})\n"
-                         "usage: mapping_accuracy_eval [models...]   (default: every model)\n",
+      fmt::print(stderr,
+                 "mapping_accuracy_eval: unknown model '{}' (known: {})\n"
+                 "usage: mapping_accuracy_eval [models...]   (default: every model)\n",
                  model, fmt::join(known, ", "));
       return 2;
     }

@@ -66,6 +66,12 @@ void print_localization(const DualLocalization& l,
         "{} times over the whole map\n",
         restarts.near, restarts.near_failed, restarts.global);
   }
+  if (restarts.from_plan > 0) {
+    fmt::print(
+        "mended      gridmap filter restarted {} times where the plan filter was sure, "
+        "converged on {} scans the first one was lost on\n",
+        restarts.from_plan, restarts.mended_scans);
+  }
   if (pair_errors) {
     fmt::print("pair error  median {} m, mean {} m, p95 {} m (against the truth)\n",
                metres(pair_errors->median), metres(pair_errors->mean), metres(pair_errors->p95));

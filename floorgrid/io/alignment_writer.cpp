@@ -123,7 +123,9 @@ json metrics_json(const Alignment& a, const std::string& dataset, const Alignmen
                        {"grid_restarts",
                         {{"near", l.grid_restarts.near},
                          {"near_failed", l.grid_restarts.near_failed},
-                         {"global", l.grid_restarts.global}}},
+                         {"global", l.grid_restarts.global},
+                         {"from_plan", l.grid_restarts.from_plan},
+                         {"mended_scans", l.grid_restarts.mended_scans}}},
                        {"notes", l.notes}};
   if (a.plan_match.judged) {
     const ScoredSimilarity& m = a.plan_match.score;

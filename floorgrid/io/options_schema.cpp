@@ -781,6 +781,11 @@ void visit(OptionVisitor& v, DualCheckOptions& o) {
           {.unit = "scans",
            .doc = "Unconverged scans before the plan filter is re-initialized",
            .choices = {}});
+  v.field("mend_scans", o.mend_scans,
+          {.unit = "scans",
+           .doc = "A gridmap filter lost while the plan filter is sure restarts where the plan "
+                  "says, given up after this many unconverged scans (0: never)",
+           .choices = {}});
   v.field("restart_when_lost", o.restart_when_lost,
           {.unit = "",
            .doc = "Re-initialize a plan filter that declares itself lost where the gridmap "

@@ -210,6 +210,12 @@ struct DualCheckOptions {
   /// is converged is re-initialized at once where the gridmap filter says, instead of
   /// searching the plan by itself (a plan's look-alike rooms and corridors lure it away).
   bool restart_when_lost = true;
+  /// The other way round: a gridmap filter lost while the plan filter is sure gets a second
+  /// gridmap filter started where the plan filter says (with the spreads below), whose records
+  /// replace the lost ones while it is converged; it is given up after this many unconverged
+  /// scans (0: never started). FHW: a crowd around the robot for 14 scans threw the gridmap
+  /// filter off for 40 while the plan filter stayed right.
+  int mend_scans = 10;
   /// World metres and radians: the re-initialized cloud's spread around the pose the local
   /// registration gives...
   double local_reinitialize_sigma = 0.3;
@@ -285,6 +291,8 @@ enum class SeedStream : std::uint64_t {
   scale_search = 2,       ///< the plan filter of the scale search
   plan_filter = 3,        ///< the tracking plan filter (each re-initialization takes the next)
   gridmap_reseed = 1000,  ///< a gridmap filter re-seeded at scan i takes this + i
+  /// a gridmap filter started where the plan filter says at scan i takes this + i
+  gridmap_mend = 1'000'000'000,
 };
 
 /// The seed of a stream.
@@ -298,6 +306,9 @@ struct ScanRecord {
   std::size_t pairs = 0;  ///< pairs made from this scan
   /// The plan filter was re-initialized on this scan by the dual check.
   bool plan_reinitialized = false;
+  /// `grid` is the record of a gridmap filter started where the plan filter said (the first
+  /// one was lost here).
+  bool grid_mended = false;
   /// The plan pose agrees with the gridmap pose through the registration (only judged while
   /// the gridmap filter is converged).
   bool consistent = true;
@@ -352,6 +363,10 @@ struct DualLocalization {
     std::size_t near = 0;         ///< around its last converged pose
     std::size_t near_failed = 0;  ///< of those, not converged in time: restarted globally
     std::size_t global = 0;       ///< from a scan's best hypotheses over the whole map
+    /// Lost while the plan filter was sure: started where the plan filter said...
+    std::size_t from_plan = 0;
+    std::size_t mended_scans =
+        0;  ///< ... and the scans it was converged on while the first was not
   } grid_restarts;
   std::size_t plan_corrections = 0;  ///< improved-proposal corrections of the plan filter
   std::size_t grid_corrections = 0;  ///< the same for the gridmap filter

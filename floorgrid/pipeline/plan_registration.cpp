@@ -59,6 +59,11 @@ Pose2 PlanRegistration::plan_pose(const Pose2& pose_in_map) const {
   return origin_in_plan_.compose({relative.x / scale_, relative.y / scale_, relative.theta});
 }
 
+Pose2 PlanRegistration::map_pose(const Pose2& pose_in_plan) const {
+  const Pose2 relative = origin_in_plan_.between(pose_in_plan);  // plan metres
+  return origin_in_map_.compose({relative.x * scale_, relative.y * scale_, relative.theta});
+}
+
 void LocalRegistration::add(std::size_t scan, const Pose2& pose_in_map, const Pose2& pose_in_plan) {
   const Pair pair{scan, pose_in_map, pose_in_plan};
   if (pairs_.size() < window_) {
@@ -112,6 +117,11 @@ void LocalRegistration::refit() {
 Pose2 LocalRegistration::plan_pose(const Pose2& pose_in_map) const {
   const Eigen::Vector2d p = offset_.transform(pose_in_map.translation() / scale_);
   return {p.x(), p.y(), normalize_angle(pose_in_map.theta + offset_.theta)};
+}
+
+Pose2 LocalRegistration::map_pose(const Pose2& pose_in_plan) const {
+  const Eigen::Vector2d m = offset_.inverse().transform(pose_in_plan.translation()) * scale_;
+  return {m.x(), m.y(), normalize_angle(pose_in_plan.theta - offset_.theta)};
 }
 
 namespace {

@@ -64,6 +64,8 @@ class PlanRegistration {
 
   /// The plan pose of a pose in the map (world metres).
   Pose2 plan_pose(const Pose2& pose_in_map) const;
+  /// The map pose of a plan pose: the inverse of plan_pose.
+  Pose2 map_pose(const Pose2& pose_in_plan) const;
   /// World metres per plan metre.
   double scale() const { return scale_; }
   /// The registered robot pose in the map.
@@ -93,6 +95,8 @@ class LocalRegistration {
   bool fresh(std::size_t scan, std::size_t min_pairs, std::size_t max_age) const;
   /// The plan pose of a map pose by the current local registration (fresh() must hold).
   Pose2 plan_pose(const Pose2& pose_in_map) const;
+  /// The map pose of a plan pose: the inverse of plan_pose.
+  Pose2 map_pose(const Pose2& pose_in_plan) const;
   /// Map metres from `pose_in_map` to the nearest map pose held (infinity when none): how far
   /// the registration is carried beyond where it was fitted.
   double distance_to(const Pose2& pose_in_map) const;

@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "floorgrid/pipeline/dual_pairs.hpp"
+#include "floorgrid/pipeline/filter_runner.hpp"
 
 namespace floorgrid {
 
@@ -69,6 +70,65 @@ std::optional<PlanRestart> DualCheck::judge(std::size_t scan, ScanRecord& record
   return restart;
 }
 
+TrackingStart DualCheck::gridmap_start(std::size_t scan, const Pose2& plan_pose) const {
+  const bool near = local_.fresh(scan, options_.local_min_pairs, options_.local_max_age);
+  return {.pose = near ? local_.map_pose(plan_pose) : global_.map_pose(plan_pose),
+          .position_sigma = near ? options_.local_reinitialize_sigma : options_.reinitialize_sigma,
+          .heading_sigma = near ? options_.local_reinitialize_heading_sigma
+                                : options_.reinitialize_heading_sigma};
+}
+
+namespace {
+
+/// The gridmap filter started where the plan filter says, while the first one is lost.
+class GridmapMender {
+ public:
+  GridmapMender(const DualMaps& maps, const RobotLog& log, const DualLocalizerOptions& options)
+      : maps_(maps), log_(log), options_(options) {}
+
+  /// Scan `i`, with the plan filter's record already in `record`: mends record.grid when it
+  /// can; `plan_was_sure` is whether the plan filter was converged on the scan before.
+  void step(std::size_t i, ScanRecord& record, bool plan_was_sure, const DualCheck& check,
+            DualLocalization& result) {
+    if (options_.dual_check.mend_scans <= 0 || record.grid.converged) {
+      runner_.reset();
+      return;
+    }
+    if (runner_) {
+      const FilterRecord r = runner_->step(i);
+      if (r.converged) {
+        record.grid = r;
+        record.grid_mended = true;
+        ++result.grid_restarts.mended_scans;
+        unconverged_ = 0;
+      } else if (r.diverged || ++unconverged_ >= options_.dual_check.mend_scans) {
+        runner_.reset();
+      }
+      return;
+    }
+    if (!record.plan.converged || !plan_was_sure)
+      return;
+    const Pose2 plan_pose = record.plan.matched ? record.plan.match.pose : record.plan.pose;
+    ParticleFilter filter(options_.grid.filter,
+                          stream_seed(options_.seed, SeedStream::gridmap_mend, i));
+    filter.initialize_tracking(check.gridmap_start(i, plan_pose), maps_.gridmap());
+    runner_.emplace(std::move(filter), maps_.grid_model().model(), maps_.grid_walls(), log_,
+                    maps_.grid_observations(), options_.grid.runner);
+    runner_->start_at(i);
+    unconverged_ = 0;
+    ++result.grid_restarts.from_plan;
+  }
+
+ private:
+  const DualMaps& maps_;
+  const RobotLog& log_;
+  const DualLocalizerOptions& options_;
+  std::optional<FilterRunner> runner_;
+  int unconverged_ = 0;
+};
+
+}  // namespace
+
 std::vector<std::optional<Pose2>> gridmap_guide(const DualLocalization& result) {
   std::vector<std::optional<Pose2>> poses(result.scans.size());
   for (std::size_t i = 0; i < result.scans.size(); ++i) {
@@ -92,13 +152,17 @@ void track_plan(const DualMaps& maps, const RobotLog& log, const DualLocalizerOp
   if (options.guide_plan_by_gridmap)
     runner.guide(gridmap_guide(result));
   DualCheck check(options.dual_check, location.registration, location.scale);
+  GridmapMender mender(maps, log, options);
   const std::size_t n = log.scans.size();
   std::size_t usable = 0;
+  bool plan_was_sure = false;
   for (std::size_t i = result.plan_start_scan; i < n; ++i) {
     ScanRecord& record = result.scans[i];
     record.plan_reinitialized = false;
     record.consistent = true;
     record.plan = runner.step(i);
+    mender.step(i, record, plan_was_sure, check, result);
+    plan_was_sure = record.plan.converged;
     if (record.plan.diverged) {
       count_divergence(result.plan_divergences,
                        std::string(to_string(runner.filter().status().divergence.reason)));

@@ -27,6 +27,11 @@ class DualCheck {
   /// returns where to re-initialize the plan filter when it should be.
   std::optional<PlanRestart> judge(std::size_t scan, ScanRecord& record);
 
+  /// The cloud a gridmap filter lost on scan `scan` restarts from when the plan filter is
+  /// sure there: around the gridmap pose the registration gives for `plan_pose` (the local
+  /// registration when fresh, with its spread, else the global one with its wider spread).
+  TrackingStart gridmap_start(std::size_t scan, const Pose2& plan_pose) const;
+
  private:
   const DualCheckOptions& options_;
   const PlanRegistration& global_;
@@ -44,6 +49,11 @@ std::vector<std::optional<Pose2>> gridmap_guide(const DualLocalization& result);
 /// Step 4 of localize_dual: the plan filter tracks the log at `scale` from the plan's start,
 /// checked against the gridmap filter scan by scan (DualCheck). Fills every ScanRecord::plan,
 /// consistent and plan_reinitialized, and the plan filter's divergences and corrections.
+/// Where the gridmap filter was lost while the plan filter is sure (converged on this scan and
+/// the one before), a new gridmap filter starts where the plan filter says
+/// (DualCheck::gridmap_start) and its records replace the lost ones while it is converged
+/// (ScanRecord::grid_mended); it is dropped when it diverges, stays unconverged for
+/// DualCheckOptions::mend_scans scans, or the first gridmap filter converges again.
 void track_plan(const DualMaps& maps, const RobotLog& log, const DualLocalizerOptions& options,
                 const PlanLocation& location, DualLocalization& result,
                 const DualProgressCallback& progress);

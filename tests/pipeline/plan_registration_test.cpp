@@ -25,6 +25,11 @@ TEST(PlanRegistration, PlanPoseScalesTheMotionFromTheOrigin) {
   const Pose2 same = registration.plan_pose(origin_in_map);
   EXPECT_NEAR(same.x, 5.0, 1e-12);
   EXPECT_NEAR(same.theta, -0.2, 1e-12);
+  // map_pose undoes plan_pose.
+  const Pose2 back = registration.map_pose(p);
+  EXPECT_NEAR(back.x, ahead.x, 1e-12);
+  EXPECT_NEAR(back.y, ahead.y, 1e-12);
+  EXPECT_NEAR(normalize_angle(back.theta - ahead.theta), 0.0, 1e-12);
 }
 
 TEST(LocalRegistration, RecoversAKnownRigidOffsetAtThePlansScale) {
@@ -43,6 +48,11 @@ TEST(LocalRegistration, RecoversAKnownRigidOffsetAtThePlansScale) {
   EXPECT_NEAR(p.x, expected.x(), 1e-9);
   EXPECT_NEAR(p.y, expected.y(), 1e-9);
   EXPECT_NEAR(p.theta, normalize_angle(-1.0 + 0.4), 1e-9);
+  // map_pose undoes plan_pose.
+  const Pose2 back = local.map_pose(p);
+  EXPECT_NEAR(back.x, query.x, 1e-9);
+  EXPECT_NEAR(back.y, query.y, 1e-9);
+  EXPECT_NEAR(normalize_angle(back.theta - query.theta), 0.0, 1e-9);
 }
 
 TEST(LocalRegistration, IsFreshOnlyWithEnoughRecentPairs) {
