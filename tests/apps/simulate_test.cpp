@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "floorgrid/io/carmen_log.hpp"
+#include "floorgrid/io/dataset_loader.hpp"
 #include "floorgrid/io/dataset_manifest.hpp"
 #include "floorgrid/io/dxf_reader.hpp"
 #include "floorgrid/io/image_io.hpp"
@@ -205,6 +206,25 @@ TEST(SimulateCommand, FromARealLogWritesADatasetOtherToolsRead) {
   const double width = read.plan.bounds().sizes().maxCoeff() / dxf_truth.plan_scale();
   EXPECT_GT(width, 40.0);
   EXPECT_LT(width, 120.0);
+  // In cm without a header, at scale 1 (seed 3): the drawing guesses inches (67% against 15%
+  // for cm: ACES has no door swings). Loaded with the manifest's floorplan_units auto, the run
+  // decides between the plausible units by registering the gridmap on the plan near scale 1:
+  // it overrules the drawing, and the plan is the cm drawing, at the building's true size.
+  const auto cm = run_floorgrid("simulate --from-log " + log +
+                                " --seed 3 --plan-format dxf --dxf-units cm --dxf-header none "
+                                "--plan-scale 1 --out " +
+                                quoted(dir / "cm"));
+  ASSERT_EQ(cm.status, 0) << cm.err;
+  const io::LoadedDataset loaded = io::load_dataset(dir / "cm");
+  ASSERT_TRUE(loaded.dxf_report && loaded.unit_decision);
+  EXPECT_NE(loaded.unit_decision->drawn, PlanUnit::cm) << "the drawing guessed right: no test";
+  EXPECT_TRUE(loaded.unit_decision->overruled()) << loaded.unit_decision->reason;
+  EXPECT_EQ(loaded.dxf_report->units_used, "cm") << loaded.unit_decision->reason;
+  EXPECT_DOUBLE_EQ(loaded.dxf_report->metres_per_unit, 0.01);
+  io::DxfReadOptions in_cm;
+  in_cm.units = "cm";
+  EXPECT_TRUE(loaded.plan->bounds().isApprox(
+      io::read_dxf(dir / "cm" / "floorplan.dxf", in_cm).plan.bounds(), 1e-6));
 }
 
 TEST(SimulateCommand, FromLogOptionsAreCheckedBeforeAnyWork) {
