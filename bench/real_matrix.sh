@@ -10,6 +10,7 @@
 # Seed 3 draws the plan as DXF, the others as a raster with a map YAML.
 # A second table: per row and model, how often the true error lies within std_m and 2 std_m
 # (metrics.json models.<name>.calibration; the bar: 60-75% and 90-98%), and the median std_m.
+# Last, the robustness issue's bars counted over the rows, with the rows that miss each.
 #
 # Usage: bench/real_matrix.sh [build-dir] [work-dir] [seeds] [options.yaml]   (seeds default
 # "1 2 3"; the options file, as `floorgrid config --dump` prints it, is passed to every align)
@@ -99,4 +100,44 @@ echo "calibration: % of the truth errors within std_m / within 2 std_m @ median 
 printf '%-11s %4s %12s %12s %12s %12s %12s %12s %12s %12s %12s %s\n' \
   log seed gt gt-affine lc ct gp gpgt dt tps auto set
 cat "$calibration"
+echo
+# The robustness issue's bars over the rows above (each row's metrics.json and truth.json).
+/usr/bin/python3 - "$work" <<'PY'
+import glob, json, os, sys
+rows = {}
+for d in sorted(glob.glob(os.path.join(sys.argv[1], "*-[0-9]*"))):
+    metrics, truth = f"{d}/align/metrics.json", f"{d}/dataset/truth.json"
+    if os.path.isdir(d) and os.path.exists(truth):
+        rows[os.path.basename(d)] = (json.load(open(metrics)) if os.path.exists(metrics) else None,
+                                     json.load(open(truth)))
+bars = {"both filters converged >= 90%": [], "plan scale error <= 0.1%": [],
+        "best model <= 0.08 m (0.12 m with a 1 m bend)": [], "auto within 10% of the best": []}
+calibrated = [0, 0]
+for name, (m, t) in rows.items():
+    if m is None:
+        for out in bars.values():
+            out.append(name)
+        continue
+    errors = {k: v["mean_error_m"] for k, v in m["models"].items()
+              if k != "auto" and v.get("mean_error_m") is not None}
+    best = min(errors.values()) if errors else float("inf")
+    auto = errors.get(m.get("chosen_model"), float("inf"))
+    bend = abs(t["parameters"].get("bend_m", 0.0))
+    checks = [(m["pairs"].get("converged_fraction") or 0.0) >= 0.9,
+              abs(m["plan_scale"] / t["plan"]["plan_scale"] - 1) <= 0.001,
+              best <= (0.12 if bend >= 1.0 else 0.08), auto <= 1.1 * best]
+    for (bar, out), ok in zip(bars.items(), checks):
+        if not ok:
+            out.append(name)
+    for k, v in m["models"].items():
+        c = v.get("calibration")
+        if c and k not in ("auto", "gt-rigid"):
+            calibrated[1] += 1
+            calibrated[0] += (0.60 <= c["within_1sigma"] <= 0.75 and
+                              0.90 <= c["within_2sigma"] <= 0.98)
+print("bars over", len(rows), "rows:")
+for bar, out in bars.items():
+    print(f"  {bar:<48} {len(rows) - len(out):>3}/{len(rows)}" + (f"  out: {' '.join(out)}" if out else ""))
+print(f"  {'calibration 1σ 60-75% and 2σ 90-98% (row x model)':<48} {calibrated[0]:>3}/{calibrated[1]}")
+PY
 echo "outputs in $work"
