@@ -17,8 +17,8 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 constexpr double kDegree = kPi / 180.0;
 
-// The centres of a grid's occupied cells, evenly thinned to at most `max_points`.
-std::vector<Eigen::Vector2d> wall_points(const OccupancyGrid& grid, std::size_t max_points) {
+// The centres of a grid's occupied cells.
+std::vector<Eigen::Vector2d> wall_points(const OccupancyGrid& grid) {
   std::vector<Eigen::Vector2d> all;
   for (int iy = 0; iy < grid.height(); ++iy) {
     for (int ix = 0; ix < grid.width(); ++ix) {
@@ -26,14 +26,20 @@ std::vector<Eigen::Vector2d> wall_points(const OccupancyGrid& grid, std::size_t 
         all.push_back(grid.geometry().cell_center(ix, iy));
     }
   }
-  if (max_points == 0 || all.size() <= max_points)
-    return all;
-  std::vector<Eigen::Vector2d> thinned;
-  thinned.reserve(max_points);
-  const double stride = double(all.size()) / double(max_points);
+  return all;
+}
+
+// `points` evenly thinned to at most `max_points` (0: all).
+std::vector<Eigen::Vector2d> thinned(const std::vector<Eigen::Vector2d>& points,
+                                     std::size_t max_points) {
+  if (max_points == 0 || points.size() <= max_points)
+    return points;
+  std::vector<Eigen::Vector2d> kept;
+  kept.reserve(max_points);
+  const double stride = double(points.size()) / double(max_points);
   for (std::size_t i = 0; i < max_points; ++i)
-    thinned.push_back(all[static_cast<std::size_t>(double(i) * stride)]);
-  return thinned;
+    kept.push_back(points[static_cast<std::size_t>(double(i) * stride)]);
+  return kept;
 }
 
 // The angle in [0, pi/2) at which the points' projections on the two turned axes are sharpest
@@ -172,18 +178,20 @@ struct Candidate {
   double profile_score = 0.0;
 };
 
-// The 2-D score of a transform (see register_maps).
+// The 2-D score of a transform (see register_maps), on each map's wall points (wall_points)
+// thinned to options.max_points.
 class Scorer {
  public:
   Scorer(const OccupancyGrid& gridmap, const OccupancyGrid& plan, PlanWalls plan_walls,
-         const MapRegistrationOptions& o)
+         const std::vector<Eigen::Vector2d>& grid_cells,
+         const std::vector<Eigen::Vector2d>& plan_cells, const MapRegistrationOptions& o)
       : gridmap_(gridmap),
         plan_field_(plan, 5.0,
                     plan_walls == PlanWalls::raster_strokes ? WallSurfaceField::Line::surface
                                                             : WallSurfaceField::Line::centre),
         grid_field_(occupied_distance_field(gridmap, 2.0)),
-        grid_points_(wall_points(gridmap, o.max_points)),
-        plan_points_(wall_points(plan, o.max_points)),
+        grid_points_(thinned(grid_cells, o.max_points)),
+        plan_points_(thinned(plan_cells, o.max_points)),
         options_(o) {
     for (const Eigen::Vector2d& g : grid_points_)
       centre_ += g;
@@ -355,12 +363,16 @@ std::vector<Candidate> profile_candidates(const std::vector<Eigen::Vector2d>& gr
   return kept;
 }
 
-// Refined coarse to fine: closeness 4 sigma, sigma, then sigma / 3 (which resolves the scale to
-// a few parts in 10^4 on a building's walls); scored at sigma, as the options' thresholds are.
-ScoredSimilarity refine_in_steps(const Scorer& scorer, const MapSimilarity& start, double sigma) {
-  const ScoredSimilarity coarse = scorer.refine(start, 4.0 * sigma);
-  const ScoredSimilarity medium = scorer.refine(coarse.transform, sigma);
+// Refined at closeness sigma, then sigma / 3 (which resolves the scale to a few parts in 10^4
+// on a building's walls); scored at sigma, as the options' thresholds are.
+ScoredSimilarity refine_fine(const Scorer& scorer, const MapSimilarity& start, double sigma) {
+  const ScoredSimilarity medium = scorer.refine(start, sigma);
   return scorer.score(scorer.refine(medium.transform, sigma / 3.0).transform, sigma);
+}
+
+// Refined coarse to fine: closeness 4 sigma first, then refine_fine.
+ScoredSimilarity refine_in_steps(const Scorer& scorer, const MapSimilarity& start, double sigma) {
+  return refine_fine(scorer, scorer.refine(start, 4.0 * sigma).transform, sigma);
 }
 
 bool distinct(const MapSimilarity& a, const MapSimilarity& b, const Eigen::Vector2d& centre) {
@@ -390,13 +402,15 @@ MapRegistration register_maps(const OccupancyGrid& gridmap, const OccupancyGrid&
                               PlanWalls plan_walls, const MapRegistrationOptions& options) {
   const auto clock = std::chrono::steady_clock::now();
   MapRegistration result;
-  Scorer scorer(gridmap, plan, plan_walls, options);
+  const std::vector<Eigen::Vector2d> grid_cells = wall_points(gridmap);
+  const std::vector<Eigen::Vector2d> plan_cells = wall_points(plan);
+  Scorer scorer(gridmap, plan, plan_walls, grid_cells, plan_cells, options);
   if (!scorer.usable())
     return result;
   const Eigen::Vector2d& centre = scorer.centre();
 
-  const std::vector<Eigen::Vector2d> grid_all = wall_points(gridmap, 40000);
-  const std::vector<Eigen::Vector2d> plan_all = wall_points(plan, 40000);
+  const std::vector<Eigen::Vector2d> grid_all = thinned(grid_cells, 40000);
+  const std::vector<Eigen::Vector2d> plan_all = thinned(plan_cells, 40000);
   const std::vector<Candidate> candidates =
       profile_candidates(grid_all, plan_all, dominant_direction(gridmap, grid_all),
                          dominant_direction(plan, plan_all), options);
@@ -418,11 +432,9 @@ MapRegistration register_maps(const OccupancyGrid& gridmap, const OccupancyGrid&
   if (options.final_points > options.max_points) {
     // The thinned points' scale is off by up to 0.1% (sampling): the winner once more on
     // (almost) every wall point, the runner-up scored on the same points.
-    scorer.use_points(wall_points(gridmap, options.final_points),
-                      wall_points(plan, options.final_points));
-    const ScoredSimilarity medium = scorer.refine(result.best.transform, options.sigma);
-    result.best =
-        scorer.score(scorer.refine(medium.transform, options.sigma / 3.0).transform, options.sigma);
+    scorer.use_points(thinned(grid_cells, options.final_points),
+                      thinned(plan_cells, options.final_points));
+    result.best = refine_fine(scorer, result.best.transform, options.sigma);
     if (runner_up != refined.end())
       result.runner_up = scorer.score(result.runner_up.transform, options.sigma);
   }
@@ -433,7 +445,7 @@ MapRegistration register_maps(const OccupancyGrid& gridmap, const OccupancyGrid&
 ScoredSimilarity refine_map_similarity(const OccupancyGrid& gridmap, const OccupancyGrid& plan,
                                        PlanWalls plan_walls, const MapSimilarity& start,
                                        const MapRegistrationOptions& options) {
-  const Scorer scorer(gridmap, plan, plan_walls, options);
+  const Scorer scorer(gridmap, plan, plan_walls, wall_points(gridmap), wall_points(plan), options);
   if (!scorer.usable())
     return {start, -1.0, 0.0, 1.0};
   return refine_in_steps(scorer, start, options.sigma);
