@@ -45,6 +45,28 @@ namespace {
 /// Stretches of the run the pairs are cut into for the standard error of a paired difference.
 constexpr std::size_t kPairedStretches = 40;
 
+/// Each model's mean squared error over the `kept` pairs (infinite for a model whose errors are
+/// not one per pair, or with an infinite error on a kept pair).
+std::vector<double> mean_squares_over(const std::vector<std::vector<double>>& errors,
+                                      const std::vector<char>& kept) {
+  std::vector<double> scores(errors.size(), std::numeric_limits<double>::infinity());
+  for (std::size_t m = 0; m < errors.size(); ++m) {
+    if (errors[m].size() != kept.size())
+      continue;
+    double sum = 0.0;
+    std::size_t count = 0;
+    for (std::size_t i = 0; i < kept.size(); ++i) {
+      if (kept[i] != 0) {
+        sum += errors[m][i] * errors[m][i];
+        ++count;
+      }
+    }
+    if (count > 0 && std::isfinite(sum))
+      scores[m] = sum / static_cast<double>(count);
+  }
+  return scores;
+}
+
 /// The folds `cv` asks for over `pairs`, blocked in the grid frame (metres whatever the plan's
 /// units), with what was used.
 Folds deal_folds(const ReferencePairs& pairs, const CrossValidationOptions& cv,
@@ -141,23 +163,7 @@ std::vector<char> paired_pairs_kept(const std::vector<std::vector<double>>& erro
 }
 
 std::vector<double> paired_scores(const std::vector<std::vector<double>>& errors, double trim) {
-  constexpr double kInfinity = std::numeric_limits<double>::infinity();
-  std::vector<double> scores(errors.size(), kInfinity);
-  const std::vector<char> kept = paired_pairs_kept(errors, trim);
-  for (std::size_t m = 0; m < errors.size(); ++m) {
-    if (errors[m].size() != kept.size())
-      continue;
-    double sum = 0.0;
-    std::size_t count = 0;
-    for (std::size_t i = 0; i < kept.size(); ++i) {
-      if (kept[i] != 0) {
-        sum += errors[m][i] * errors[m][i];
-        ++count;
-      }
-    }
-    scores[m] = count > 0 && std::isfinite(sum) ? sum / static_cast<double>(count) : kInfinity;
-  }
-  return scores;
+  return mean_squares_over(errors, paired_pairs_kept(errors, trim));
 }
 
 double paired_score_difference_se(const std::vector<double>& a, const std::vector<double>& b,
@@ -240,10 +246,6 @@ AutoMapping::~AutoMapping() = default;
 
 void AutoMapping::fit_model(const ReferencePairs& pairs, FitSummary& summary) {
   table_.clear();
-  std::string best;
-  double best_error = std::numeric_limits<double>::infinity();
-  CrossValidationRecord best_method;
-  std::vector<HeldOutResidual> best_held_out;
   // Runs are compared pair by pair (paired_scores): trimmed of the stretches the filters got
   // wrong, which would weigh on every model's mean alike, and most on the smooth models that
   // do not follow it (Orebro: the mean picks gpgt, 2.8x the best); by mean squared error, whose
@@ -251,7 +253,6 @@ void AutoMapping::fit_model(const ReferencePairs& pairs, FitSummary& summary) {
   // the median picks tps, 1.45x gp's error).
   const bool paired = options_->auto_select.cv.kind == CrossValidationKind::runs;
   std::vector<CrossValidationResult> results;
-  Value table = Value::object();
   for (const auto& name : options_->auto_select.candidates) {
     MappingOptions candidate = *options_;
     candidate.model = name;
@@ -266,24 +267,27 @@ void AutoMapping::fit_model(const ReferencePairs& pairs, FitSummary& summary) {
     scores.push_back(cv.mean_error_m);
     errors.push_back(cv.pair_errors);
   }
+  const std::vector<char> kept = paired ? paired_pairs_kept(errors) : std::vector<char>{};
   if (paired)
-    scores = paired_scores(errors);
+    scores = mean_squares_over(errors, kept);
   // The lowest score (the earlier on ties); by runs then the earliest candidate within
   // tie_standard_errors of it: a difference the pairs' noise could make is no reason to leave
   // the cheaper model.
-  std::size_t lowest = results.size();
+  std::size_t pick = results.size();
   for (std::size_t k = 0; k < results.size(); ++k) {
-    if (std::isfinite(scores[k]) && (lowest == results.size() || scores[k] < scores[lowest]))
-      lowest = k;
+    if (std::isfinite(scores[k]) && (pick == results.size() || scores[k] < scores[pick]))
+      pick = k;
   }
+  if (pick == results.size())
+    throw InputError("no candidate model could be fitted to the pairs", {}, 0, "pairs");
+  const std::size_t lowest = pick;
   std::vector<double> standard_errors(results.size(), 0.0);
-  std::size_t pick = lowest;
-  if (paired && lowest < results.size() && options_->auto_select.tie_standard_errors > 0.0) {
-    const std::vector<char> kept = paired_pairs_kept(errors);
+  if (paired && options_->auto_select.tie_standard_errors > 0.0) {
     for (std::size_t k = 0; k < results.size(); ++k) {
-      standard_errors[k] = k == lowest ? 0.0
-                                       : paired_score_difference_se(errors[k], errors[lowest], kept,
-                                                                    kPairedStretches);
+      if (k != lowest) {
+        standard_errors[k] =
+            paired_score_difference_se(errors[k], errors[lowest], kept, kPairedStretches);
+      }
     }
     for (std::size_t k = 0; k < lowest; ++k) {
       if (scores[k] <=
@@ -293,6 +297,7 @@ void AutoMapping::fit_model(const ReferencePairs& pairs, FitSummary& summary) {
       }
     }
   }
+  Value table = Value::object();
   for (std::size_t k = 0; k < results.size(); ++k) {
     const std::string& name = options_->auto_select.candidates[k];
     const CrossValidationResult& cv = results[k];
@@ -309,14 +314,10 @@ void AutoMapping::fit_model(const ReferencePairs& pairs, FitSummary& summary) {
           std::isfinite(standard_errors[k]) ? Value(standard_errors[k]) : Value();
     }
   }
-  if (pick < results.size()) {
-    best = options_->auto_select.candidates[pick];
-    best_error = results[pick].mean_error_m;
-    best_method = results[pick].method;
-    best_held_out = results[pick].held_out;
-  }
-  if (best.empty())
-    throw InputError("no candidate model could be fitted to the pairs", {}, 0, "pairs");
+  const std::string& best = options_->auto_select.candidates[pick];
+  const double best_error = results[pick].mean_error_m;
+  const CrossValidationRecord& best_method = results[pick].method;
+  std::vector<HeldOutResidual> best_held_out = results[pick].held_out;
   MappingOptions chosen = *options_;
   chosen.model = best;
   chosen_ = make_mapping(chosen);
@@ -324,7 +325,7 @@ void AutoMapping::fit_model(const ReferencePairs& pairs, FitSummary& summary) {
   chosen_->set_cv_error(best_error, best_method);
   // The chosen model's std_m, from its own held-out errors: of blocked folds (the error away
   // from the pairs) when the candidates were compared by runs.
-  if (options_->auto_select.cv.kind == CrossValidationKind::runs) {
+  if (paired) {
     const auto known = known_blocked_.find(best);
     CrossValidationOptions blocked = options_->auto_select.cv;
     blocked.kind = CrossValidationKind::blocked;
