@@ -64,8 +64,7 @@ Eigen::VectorXd robust_weights(const ReferencePairs& pairs, double lambda,
         return Eigen::VectorXd::Ones(n);  // a training set the spline refuses: no reweighting
       }
     }
-    std::vector<double> sorted = errors;
-    const double limit = o.robust_cutoff * upper_median(sorted);
+    const double limit = o.robust_cutoff * upper_median(errors);
     if (!(limit > 0.0))
       break;
     for (Eigen::Index i = 0; i < n; ++i) {

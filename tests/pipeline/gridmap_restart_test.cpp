@@ -90,8 +90,9 @@ TEST(GridmapRestart, ALostGridmapFilterIsRestartedWhereThePlanFilterIsSure) {
                                    .gridmap = d.gridmap,
                                    .log = fhw().noisy,
                                    .plan_scale = *d.options.plan_scale};
-  // The run in which the gridmap filter loses itself for about 40 scans, people crowding the
-  // robot (the coarser lattice of earlier builds' global localization gives that run).
+  // The run in which the gridmap filter loses itself for about 35 scans after 6 scans of
+  // readings cut short (people close around the robot); the coarser lattice of earlier builds'
+  // global localization gives that run.
   DualLocalizerOptions options;
   options.grid.filter.seeding.headings = 72;
   const DualLocalization mended = localize_dual(inputs, options, {});
