@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <cmath>
 
 #include "apps/floorgrid/commands.hpp"
 #include "apps/floorgrid/dataset_run.hpp"
@@ -44,6 +45,12 @@ void run_align(const std::string& dataset, const std::string& out, const JobOpti
   progress.finish();
   require_localized(a.localization.status, d);
   print_localization(a.localization, a.pair_errors);
+  if (a.pair_noise) {
+    fmt::print(
+        "pair noise  {:.3f} m rms, from {} differences between visits to one place "
+        "(taken out of each model's std_m)\n",
+        std::sqrt(a.pair_noise->mean_square_m2), a.pair_noise->differences);
+  }
   if (a.plan_match.judged) {
     fmt::print(
         "plan match  score {:.2f} under the pairs' similarity ({:.0f}% of the gridmap's "

@@ -155,8 +155,13 @@ void add_fit_command(CLI::App& root) {
           with_file(args->pairs, [&] { return cross_validate(args->options, pairs, folds); });
       model->set_cv_error(r.mean_error_m, r.method);
       // auto has its chosen model's already; the others' from their held-out errors.
-      if (model->name() != "auto")
-        model->set_error_model(fit_error_model(r.held_out, args->options.uncertainty));
+      if (model->name() != "auto") {
+        model->set_error_model(with_file(args->pairs, [&] {
+          return fit_model_error(args->options, pairs, folds, pair_noise(pairs),
+                                 folds.kind == CrossValidationKind::blocked ? &r : nullptr,
+                                 folds.kind == CrossValidationKind::runs ? &r : nullptr);
+        }));
+      }
     }
     io::write_model(*model, args->out);
     const FitSummary& f = model->summary();

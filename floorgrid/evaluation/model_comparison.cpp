@@ -34,6 +34,8 @@ std::vector<ModelReport> compare_models(const ReferencePairs& pairs, const Evalu
   const CrossValidationKind auto_kind = options.mapping.auto_select.cv.kind;
   const std::vector<std::string> candidates = options.mapping.auto_select.candidates;
   std::map<std::string, CrossValidationResult> cross_validated, by_runs;
+  // The pairs' own noise, taken out of every model's held-out errors for its std_m.
+  const std::optional<PairNoise> noise = pair_noise(pairs);
   for (std::size_t done = 0; done < order.size(); ++done) {
     const std::size_t k = order[done];
     const std::string& name = options.models[k];
@@ -66,7 +68,10 @@ std::vector<ModelReport> compare_models(const ReferencePairs& pairs, const Evalu
         }
         const CrossValidationResult r = cross_validate(mapping, pairs, cv);
         model->set_cv_error(r.mean_error_m, r.method);
-        model->set_error_model(fit_error_model(r.held_out, mapping.uncertainty));
+        const auto runs = by_runs.find(name);
+        model->set_error_model(fit_model_error(
+            mapping, pairs, cv, noise, cv.kind == CrossValidationKind::blocked ? &r : nullptr,
+            runs != by_runs.end() ? &runs->second : nullptr));
         report.summary.cv_error_m = r.mean_error_m;
         report.summary.cv = r.method;
         cross_validated[name] = r;

@@ -107,6 +107,10 @@ json metrics_json(const Alignment& a, const std::string& dataset, const Alignmen
     pairs["error_mean_m"] = number(a.pair_errors->mean);
     pairs["error_p95_m"] = number(a.pair_errors->p95);
   }
+  // The pairs' own noise, from pairs of different visits to one place (no truth needed).
+  pairs["noise_rms_m"] =
+      a.pair_noise ? number(std::sqrt(a.pair_noise->mean_square_m2)) : json(nullptr);
+  pairs["noise_differences"] = a.pair_noise ? a.pair_noise->differences : 0;
   j["pairs"] = pairs;
   j["plan_scale"] = number(l.plan_scale);
   j["plan_scale_std"] = number(l.plan_scale_std);

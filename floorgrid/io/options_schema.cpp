@@ -54,7 +54,12 @@ void visit(OptionVisitor& v, ErrorModelOptions& o) {
           {.unit = "", .doc = "Held-out pairs needed at least (fewer: no std_m)", .choices = {}});
   v.field("variance_scale", o.variance_scale,
           {.unit = "",
-           .doc = "Calibration factor on the variance fitted to the held-out errors",
+           .doc = "Factor on the variance fitted to the held-out errors when no runs folds "
+                  "give the model's level",
+           .choices = {}});
+  v.field("min_level_fraction", o.min_level_fraction,
+          {.unit = "",
+           .doc = "The level's floor as a fraction of the runs folds' held-out RMS error",
            .choices = {}});
   v.field("local_radius", o.local_radius,
           {.unit = "m",

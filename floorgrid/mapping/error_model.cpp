@@ -1,5 +1,6 @@
 #include "floorgrid/mapping/error_model.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -14,6 +15,8 @@ void validate(const ErrorModelOptions& options, const char* prefix) {
   require_option(options.min_residuals >= 3, p + "min_residuals", options.min_residuals, ">= 3");
   require_option(options.variance_scale > 0.0 && options.variance_scale <= 1e6,
                  p + "variance_scale", options.variance_scale, "in (0, 1e6]");
+  require_option(options.min_level_fraction > 0.0 && options.min_level_fraction <= 1.0,
+                 p + "min_level_fraction", options.min_level_fraction, "in (0, 1]");
   require_option(options.local_radius >= 0.0 && options.local_radius <= 1e3, p + "local_radius",
                  options.local_radius, "in [0, 1000] metres");
   require_option(options.local_prior > 0.0 && options.local_prior <= 1e6, p + "local_prior",
@@ -92,10 +95,32 @@ Estimate search(const std::vector<HeldOutResidual>& residuals, const Estimate& c
   return best;
 }
 
+/// k (see ErrorLevel) from the runs residuals' moments: their mean square less the pairs'
+/// noise (at least min_fraction^2 of it) over the shape's mean; nullopt without a residual.
+std::optional<double> level_scale(const ErrorLevel& level, double s0, double g,
+                                  double min_fraction) {
+  double errors = 0.0, shape = 0.0;
+  std::size_t count = 0;
+  for (const HeldOutResidual& r : level.held_out) {
+    if (!std::isfinite(r.error_m) || !std::isfinite(r.nearest_m))
+      continue;
+    const double spread = g * r.nearest_m;
+    errors += r.error_m * r.error_m;
+    shape += s0 * s0 + spread * spread;
+    ++count;
+  }
+  if (count == 0 || !(shape > 0.0))
+    return std::nullopt;
+  const double own = std::max(errors - static_cast<double>(count) * level.pair_noise_m2,
+                              min_fraction * min_fraction * errors);
+  return std::sqrt(own / shape);
+}
+
 }  // namespace
 
 std::optional<ErrorModel> fit_error_model(std::span<const HeldOutResidual> given,
-                                          const ErrorModelOptions& options) {
+                                          const ErrorModelOptions& options,
+                                          std::optional<ErrorLevel> level) {
   std::vector<HeldOutResidual> residuals;
   residuals.reserve(given.size());
   double max_nearest = 0.0;
@@ -128,7 +153,9 @@ std::optional<ErrorModel> fit_error_model(std::span<const HeldOutResidual> given
     }
     model.index_local_points();
   }
-  const double scale = std::sqrt(options.variance_scale);
+  const std::optional<double> levelled =
+      level ? level_scale(*level, s0, g, options.min_level_fraction) : std::nullopt;
+  const double scale = levelled ? *levelled : std::sqrt(options.variance_scale);
   model.base_std_m = scale * s0;
   model.growth = scale * g;
   model.residuals = residuals.size();

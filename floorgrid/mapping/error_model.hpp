@@ -21,12 +21,14 @@ struct HeldOutResidual {
 struct ErrorModelOptions {
   /// Held-out pairs needed at least: with fewer the model states no std_m.
   std::size_t min_residuals = 30;
-  /// Calibration factor on the fitted variance, tuned on the simulator's presets and ACES seed
-  /// 1 when the error model was introduced (the median model's true errors then lay within
-  /// std_m 69% and within 2 std_m 95% of the time there; bench/real_matrix.sh prints what it
-  /// gives now): the held-out errors include the pairs' own noise, which a model's error at a
-  /// point does not.
+  /// Factor on the fitted variance when the model's level is not known (see ErrorLevel), tuned
+  /// on the simulator's presets and ACES seed 1 when the error model was introduced: the
+  /// held-out errors include the pairs' own noise, which a model's error at a point does not.
   double variance_scale = 0.7;
+  /// The level's floor, as a fraction of the runs folds' held-out root mean square error: the
+  /// pairs' noise is estimated, and where it is estimated at or above the held-out error the
+  /// model's own error is not zero.
+  double min_level_fraction = 0.2;
   /// Metres: radius (Gaussian sigma) over which the held-out errors around a point say how much
   /// worse or better than the global fit the model is there (0: no local part).
   double local_radius = 1.0;
@@ -70,11 +72,24 @@ struct ErrorModel {
   PointIndex2D local_index_;
 };
 
+/// What sets the model's own error level (fit_error_model): held-out pairs of folds of whole
+/// runs, whose places other visits measured, and the pairs' own noise (pair_noise). A runs
+/// residual at d from its training pairs has E|e|^2 = k^2 (s0^2 + (g d)^2) + E|n|^2: the model's
+/// error there (the blocked fit's shape, scaled by k^2) plus the held-out pair's own noise,
+/// which a model's error at a point does not carry.
+struct ErrorLevel {
+  std::span<const HeldOutResidual> held_out;  ///< runs folds' held-out pairs
+  double pair_noise_m2 = 0.0;                 ///< the pairs' E|n|^2, m^2
+};
+
 /// Fits s0 and g by maximum likelihood on `residuals` (each error a 2D isotropic Gaussian of
 /// variance var(d): its length is Rayleigh distributed), keeps the local part, and scales the
-/// variance by options.variance_scale. nullopt with fewer than options.min_residuals finite
-/// residuals.
+/// variance: by k^2 solved from `level`'s moments, at least min_level_fraction^2 of the runs
+/// residuals' mean square over the shape's (the blocked residuals give the shape: how the error
+/// grows away from the pairs and where it is larger); by options.variance_scale without a
+/// level. nullopt with fewer than options.min_residuals finite residuals.
 std::optional<ErrorModel> fit_error_model(std::span<const HeldOutResidual> residuals,
-                                          const ErrorModelOptions& options = {});
+                                          const ErrorModelOptions& options = {},
+                                          std::optional<ErrorLevel> level = std::nullopt);
 
 }  // namespace floorgrid

@@ -119,7 +119,7 @@ CrossValidationResult cross_validate(const MappingOptions& options, const Refere
       errors.push_back(std::isfinite(e) ? e : std::numeric_limits<double>::infinity());
       result.pair_errors[static_cast<std::size_t>(i)] = errors.back();
       sum += errors.back();
-      if (std::isfinite(e) && cv.kind == CrossValidationKind::blocked)
+      if (std::isfinite(e) && cv.kind != CrossValidationKind::random)
         result.held_out.push_back({e, training.nearest(pairs.points_in_plan.col(i)).distance,
                                    pairs.points_in_plan.col(i)});
     }
@@ -135,6 +135,29 @@ CrossValidationResult cross_validate(const MappingOptions& options, const Refere
   result.mean_error_m = sum / static_cast<double>(errors.size());
   result.median_error_m = upper_median(errors);
   return result;
+}
+
+std::optional<ErrorModel> fit_model_error(const MappingOptions& options,
+                                          const ReferencePairs& pairs,
+                                          const CrossValidationOptions& cv,
+                                          const std::optional<PairNoise>& noise,
+                                          const CrossValidationResult* blocked,
+                                          const CrossValidationResult* runs) {
+  CrossValidationOptions folds = cv;
+  std::optional<CrossValidationResult> done_blocked, done_runs;
+  if (!blocked) {
+    folds.kind = CrossValidationKind::blocked;
+    blocked = &done_blocked.emplace(cross_validate(options, pairs, folds));
+  }
+  std::optional<ErrorLevel> level;
+  if (noise) {
+    if (!runs) {
+      folds.kind = CrossValidationKind::runs;
+      runs = &done_runs.emplace(cross_validate(options, pairs, folds));
+    }
+    level = ErrorLevel{runs->held_out, noise->mean_square_m2};
+  }
+  return fit_error_model(blocked->held_out, options.uncertainty, level);
 }
 
 std::vector<char> paired_pairs_kept(const std::vector<std::vector<double>>& errors, double trim) {
@@ -317,22 +340,21 @@ void AutoMapping::fit_model(const ReferencePairs& pairs, FitSummary& summary) {
   const std::string& best = options_->auto_select.candidates[pick];
   const double best_error = results[pick].mean_error_m;
   const CrossValidationRecord& best_method = results[pick].method;
-  std::vector<HeldOutResidual> best_held_out = results[pick].held_out;
   MappingOptions chosen = *options_;
   chosen.model = best;
   chosen_ = make_mapping(chosen);
   const FitSummary inner = chosen_->fit(pairs);
   chosen_->set_cv_error(best_error, best_method);
-  // The chosen model's std_m, from its own held-out errors: of blocked folds (the error away
-  // from the pairs) when the candidates were compared by runs.
-  if (paired) {
-    const auto known = known_blocked_.find(best);
-    CrossValidationOptions blocked = options_->auto_select.cv;
-    blocked.kind = CrossValidationKind::blocked;
-    best_held_out = known != known_blocked_.end() ? known->second.held_out
-                                                  : cross_validate(chosen, pairs, blocked).held_out;
-  }
-  chosen_->set_error_model(fit_error_model(best_held_out, options_->uncertainty));
+  // The chosen model's std_m, from its own held-out errors: the candidates' cross-validation
+  // is one of the two it needs (blocked or runs), when it compared so.
+  const auto known = known_blocked_.find(best);
+  const CrossValidationResult* blocked =
+      known != known_blocked_.end()                                   ? &known->second
+      : options_->auto_select.cv.kind == CrossValidationKind::blocked ? &results[pick]
+                                                                      : nullptr;
+  chosen_->set_error_model(fit_model_error(chosen, pairs, options_->auto_select.cv,
+                                           pair_noise(pairs), blocked,
+                                           paired ? &results[pick] : nullptr));
   set_error_model(chosen_->error_model());
   summary.rms_m = inner.rms_m;
   summary.inliers = inner.inliers;

@@ -7,6 +7,7 @@
 
 #include "floorgrid/mapping/cross_validation_folds.hpp"
 #include "floorgrid/mapping/model_registry.hpp"
+#include "floorgrid/mapping/pair_noise.hpp"
 #include "floorgrid/mapping/point_mapping.hpp"
 
 namespace floorgrid {
@@ -49,9 +50,9 @@ struct CrossValidationResult {
   std::size_t pairs = 0;            ///< pairs cross-validated (after binning)
   std::size_t failed_folds = 0;     ///< folds whose training set the model refused
   CrossValidationRecord method;     ///< kind, folds and block size used
-  /// Blocked folds: every held-out pair's error and distance to its fold's training pairs
-  /// (finite errors), for the model's error model (fit_error_model); empty for random folds,
-  /// whose held-out pairs have near-copies in training.
+  /// Blocked and runs folds: every held-out pair's error and distance to its fold's training
+  /// pairs (finite errors), for the model's error model (fit_model_error); empty for random
+  /// folds, whose held-out pairs have near-copies in training.
   std::vector<HeldOutResidual> held_out;
   /// Every pair's held-out error, by pair (infinite where its fold failed): the same pairs and
   /// folds for every model cross-validated with the same options, so models compare pair by
@@ -88,6 +89,18 @@ double paired_score_difference_se(const std::vector<double>& a, const std::vecto
 /// as failed; when every fold fails the error is infinite.
 CrossValidationResult cross_validate(const MappingOptions& options, const ReferencePairs& pairs,
                                      const CrossValidationOptions& cv = {});
+
+/// A model's std_m (fit_error_model) from cross-validations of `options` over `pairs` with
+/// `cv`'s folds, block size and pair budget: the shape from the held-out errors of blocked folds,
+/// the level from those of runs folds and the pairs' `noise` (ErrorLevel; variance_scale without
+/// a noise estimate). `blocked` and `runs`, when given, are those already done; the others are done
+/// here.
+std::optional<ErrorModel> fit_model_error(const MappingOptions& options,
+                                          const ReferencePairs& pairs,
+                                          const CrossValidationOptions& cv,
+                                          const std::optional<PairNoise>& noise,
+                                          const CrossValidationResult* blocked = nullptr,
+                                          const CrossValidationResult* runs = nullptr);
 
 /// Leave-one-out errors: for each pair, the model fitted on all others predicts it (metres;
 /// infinite where the model cannot be fitted). For small hand-picked sets.

@@ -142,6 +142,7 @@ Alignment align(const AlignmentInputs& in, const AlignmentOptions& options,
   a.domain = truth_domain(in, truth, options.domain_spacing);
   if (in.truth_warp && a.localization.pairs.size() > 0)
     a.pair_errors = pair_errors(a.localization.pairs, in.truth_warp);
+  a.pair_noise = pair_noise(a.localization.pairs);
 
   a.plan_match =
       judge_plan_match(in.gridmap, in.plan_grid, plan_walls_of(in.plan), a.localization.pairs,

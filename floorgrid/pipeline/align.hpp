@@ -9,6 +9,7 @@
 #include "floorgrid/evaluation/domain.hpp"
 #include "floorgrid/evaluation/model_comparison.hpp"
 #include "floorgrid/evaluation/model_evaluation.hpp"
+#include "floorgrid/mapping/pair_noise.hpp"
 #include "floorgrid/pipeline/dual_localizer.hpp"
 #include "floorgrid/pipeline/plan_match.hpp"
 
@@ -74,6 +75,8 @@ struct Alignment {
   std::string chosen;                          ///< the model `auto` chose ("" without auto)
   double fit_seconds = 0.0;                    ///< all fits and cross-validations
   double evaluate_seconds = 0.0;               ///< all judging
+  /// The pairs' own noise from revisits (pair_noise), taken out of every model's std_m.
+  std::optional<PairNoise> pair_noise;
   /// The truth as a function (plan -> grid), when the dataset has one.
   std::optional<GroundTruth> truth;
 };
