@@ -57,12 +57,15 @@ d, name, seed, set_name = sys.argv[1:5]
 path = f"{d}/align/metrics.json"
 models = ["gt", "gt-affine", "lc", "ct", "gp", "gpgt", "dt", "tps", "auto"]
 cells = []
-m = json.load(open(path))["models"] if os.path.exists(path) else {}
+metrics = json.load(open(path)) if os.path.exists(path) else {}
+m = metrics.get("models", {})
+noise = metrics.get("pairs", {}).get("noise_rms_m")
 for k in models:
     c = m.get(k, {}).get("calibration")
     cells.append("-" if c is None else f"{100 * c['within_1sigma']:.0f}/{100 * c['within_2sigma']:.0f}")
     cells[-1] += "" if c is None else f"@{100 * c['median_std_m']:.1f}"
-print(f"{name:<11} {seed:>4} " + " ".join(f"{c:>12}" for c in cells) + f" {set_name}")
+noise = "-" if noise is None else f"{100 * noise:.1f}"
+print(f"{name:<11} {seed:>4} " + " ".join(f"{c:>12}" for c in cells) + f" {noise:>5} {set_name}")
 PY
     /usr/bin/python3 - "$d" "$name" "$seed" "$format" "$(echo "$end - $start" | bc)" "$rc" "$set_name" <<'PY'
 import json, os, sys
@@ -96,9 +99,10 @@ PY
   done
 done
 echo
-echo "calibration: % of the truth errors within std_m / within 2 std_m @ median std_m (cm)"
-printf '%-11s %4s %12s %12s %12s %12s %12s %12s %12s %12s %12s %s\n' \
-  log seed gt gt-affine lc ct gp gpgt dt tps auto set
+echo "calibration: % of the truth errors within std_m / within 2 std_m @ median std_m (cm);"
+echo "noise: the pairs' own noise the std_m leave out, rms cm (metrics.json pairs.noise_rms_m)"
+printf '%-11s %4s %12s %12s %12s %12s %12s %12s %12s %12s %12s %5s %s\n' \
+  log seed gt gt-affine lc ct gp gpgt dt tps auto noise set
 cat "$calibration"
 echo
 # The robustness issue's bars over the rows above (each row's metrics.json and truth.json).
