@@ -96,7 +96,8 @@ Estimate search(const std::vector<HeldOutResidual>& residuals, const Estimate& c
 }
 
 /// k (see ErrorLevel) from the runs residuals' moments: their mean square less the pairs'
-/// noise (at least min_fraction^2 of it) over the shape's mean; nullopt without a residual.
+/// noise (at least min_fraction^2 of their mean square) over the shape's mean there; nullopt
+/// without a finite residual.
 std::optional<double> level_scale(const ErrorLevel& level, double s0, double g,
                                   double min_fraction) {
   double errors = 0.0, shape = 0.0;
