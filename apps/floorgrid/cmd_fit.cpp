@@ -72,8 +72,9 @@ void add_fit_command(CLI::App& root) {
       ->capture_default_str();
   cmd->add_option("--out", args->out, "model file to write (JSON)")->required();
   cmd->add_option("--cv", args->cv,
-                  "k-fold cross-validated error, and (blocked folds) the model's std_m fitted "
-                  "on the held-out errors (0: neither; std_m then empty)")
+                  "k-fold cross-validated error, and the model's std_m: its shape from "
+                  "blocked folds' held-out errors, its level from runs folds' less the pairs' "
+                  "own noise (0: neither; std_m then empty)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   cmd->add_option("--cv-kind", args->cv_kind,
