@@ -84,6 +84,15 @@ TEST(AlignCommand, OfficeGivesAccuratePairsAndModelsAndEveryContractKey) {
   EXPECT_GE(m["pairs"]["converged_fraction"].get<double>(), 0.9);
   EXPECT_LE(m["models"]["gt"]["mean_error_m"].get<double>(), 0.10);
   EXPECT_NEAR(m["plan_scale"].get<double>(), true_plan_scale(dir), 0.002);
+  // The pairs' own noise, measured between visits without the truth, is of the size of their
+  // error against the truth (their mean error 0.056 m here; the noise leaves out what every
+  // visit to a place shares).
+  ASSERT_TRUE(m["pairs"]["noise_rms_m"].is_number());
+  EXPECT_GT(m["pairs"]["noise_differences"].get<int>(), 1000);
+  EXPECT_GT(m["pairs"]["noise_rms_m"].get<double>(),
+            0.5 * m["pairs"]["error_mean_m"].get<double>());
+  EXPECT_LT(m["pairs"]["noise_rms_m"].get<double>(),
+            2.0 * m["pairs"]["error_mean_m"].get<double>());
   // The pairs file holds the pairs counted.
   const ReferencePairs pairs = io::read_pairs_csv(dir / "out" / "pairs.csv");
   EXPECT_EQ(pairs.size(), m["pairs"]["count"].get<Eigen::Index>());
