@@ -10,7 +10,8 @@
 # Seed 3 draws the plan as DXF, the others as a raster with a map YAML.
 # A second table: per row and model, how often the true error lies within std_m and 2 std_m
 # (metrics.json models.<name>.calibration; the bar: 60-75% and 90-98%), and the median std_m.
-# Last, the robustness issue's bars counted over the rows, with the rows that miss each.
+# Last, the robustness issue's bars counted over the rows, with the rows that miss each, and
+# how far std_m's level is off: median std_m over median true error per row and model.
 #
 # Usage: bench/real_matrix.sh [build-dir] [work-dir] [seeds] [options.yaml]   (seeds default
 # "1 2 3"; the options file, as `floorgrid config --dump` prints it, is passed to every align)
@@ -117,6 +118,7 @@ for d in sorted(glob.glob(os.path.join(sys.argv[1], "*-[0-9]*"))):
 bars = {"both filters converged >= 90%": [], "plan scale error <= 0.1%": [],
         "best model <= 0.08 m (0.12 m with a 1 m bend)": [], "auto within 10% of the best": []}
 calibrated = [0, 0]
+levels = []  # per row x model: median std_m over median true error
 for name, (m, t) in rows.items():
     if m is None:
         for out in bars.values():
@@ -139,9 +141,17 @@ for name, (m, t) in rows.items():
             calibrated[1] += 1
             calibrated[0] += (0.60 <= c["within_1sigma"] <= 0.75 and
                               0.90 <= c["within_2sigma"] <= 0.98)
+            if v.get("median_error_m"):
+                levels.append(c["median_std_m"] / v["median_error_m"])
 print("bars over", len(rows), "rows:")
 for bar, out in bars.items():
     print(f"  {bar:<48} {len(rows) - len(out):>3}/{len(rows)}" + (f"  out: {' '.join(out)}" if out else ""))
 print(f"  {'calibration 1σ 60-75% and 2σ 90-98% (row x model)':<48} {calibrated[0]:>3}/{calibrated[1]}")
+if levels:
+    # A Rayleigh error whose std_m is right has median |e| = 0.83 std_m: the ratio 1.20.
+    levels.sort()
+    q = [levels[min(len(levels) - 1, int(f * len(levels)))] for f in (0.1, 0.25, 0.5, 0.75, 0.9)]
+    print(f"  median std_m / median error, 10/25/50/75/90%: {' '.join(f'{x:.2f}' for x in q)}"
+          " (1.20 when right)")
 PY
 echo "outputs in $work"
