@@ -1,6 +1,7 @@
 #include "floorgrid/mapping/pair_noise.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "floorgrid/core/error.hpp"
 #include "floorgrid/geometry/point_index.hpp"
@@ -22,6 +23,12 @@ std::optional<PairNoise> pair_noise(const ReferencePairs& pairs, const PairNoise
   } catch (const InputError&) {
     return std::nullopt;  // degenerate pairs (one place): nothing to compare
   }
+  // The place's radius in the plan's units: options.radius is grid (world) metres.
+  const double scale =
+      std::sqrt(std::abs(linear(0, 0) * linear(1, 1) - linear(0, 1) * linear(1, 0)));
+  if (!(scale > 0.0) || !std::isfinite(scale))
+    return std::nullopt;
+  const double radius = options.radius / scale;
   const auto stretch_of = [&](Eigen::Index i) {
     return static_cast<std::size_t>(i) * options.stretches / static_cast<std::size_t>(n);
   };
@@ -32,8 +39,7 @@ std::optional<PairNoise> pair_noise(const ReferencePairs& pairs, const PairNoise
   for (std::size_t q = 0; q < queries; ++q) {
     const auto i = static_cast<Eigen::Index>(q * static_cast<std::size_t>(n) / queries);
     std::size_t used = 0;
-    for (const PointIndex2D::Neighbour& m :
-         index.within(pairs.points_in_plan.col(i), options.radius)) {
+    for (const PointIndex2D::Neighbour& m : index.within(pairs.points_in_plan.col(i), radius)) {
       if (used == options.neighbours)
         break;
       if (stretch_of(m.index) == stretch_of(i))

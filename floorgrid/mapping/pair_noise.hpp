@@ -9,7 +9,8 @@ namespace floorgrid {
 
 /// How the pairs' own noise is estimated (see pair_noise).
 struct PairNoiseOptions {
-  /// Plan metres: two pairs this close count as measuring the same place.
+  /// Grid metres (the plan's units scaled by the pairs' similarity): two pairs this close in
+  /// the plan count as measuring the same place.
   double radius = 0.3;
   /// The pairs, in the order they were made, are cut into this many stretches of equal count;
   /// two pairs of one stretch may share a pose error, two of different stretches count as

@@ -172,6 +172,13 @@ TEST(PairNoise, DifferentVisitsToAPlaceMeasureThePairsNoiseButNotTheMapping) {
   const std::optional<PairNoise> same = pair_noise(biased);
   ASSERT_TRUE(same.has_value());
   EXPECT_NEAR(same->mean_square_m2, noise->mean_square_m2, 0.05 * expected);
+  // The place's radius is in grid metres: the plan drawn in centimetres gives the same.
+  ReferencePairs in_cm = pairs;
+  in_cm.points_in_plan *= 100.0;
+  const std::optional<PairNoise> cm = pair_noise(in_cm);
+  ASSERT_TRUE(cm.has_value());
+  EXPECT_EQ(cm->differences, noise->differences);
+  EXPECT_NEAR(cm->mean_square_m2, noise->mean_square_m2, 1e-9);
   // Pairs that never revisit a place (one stretch each) give no estimate.
   PairNoiseOptions one_visit;
   one_visit.radius = 1e-6;
