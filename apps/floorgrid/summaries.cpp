@@ -86,9 +86,9 @@ void print_localization(const DualLocalization& l,
 
 void print_models(const Alignment& a) {
   const bool truth = a.truth.has_value();
-  fmt::print("\nmodel      {:>9} {:>9} {:>9} {:>9} {:>10} {:>10} {:>8}\n", truth ? "mean_m" : "",
-             truth ? "median_m" : "", truth ? "p95_m" : "", "cv_m", "walls_m", "there+back",
-             "fit_s");
+  fmt::print("\nmodel      {:>9} {:>9} {:>9} {:>9} {:>9} {:>10} {:>10} {:>8}\n",
+             truth ? "mean_m" : "", truth ? "median_m" : "", truth ? "p95_m" : "", "cv_m", "std_m",
+             "walls_m", "there+back", "fit_s");
   for (const ModelAlignment& m : a.models) {
     const ModelReport& r = m.report;
     if (!r.failure.empty()) {
@@ -98,15 +98,21 @@ void print_models(const Alignment& a) {
     const auto e = [&](double ErrorStatistics::*field) {
       return r.errors ? metres((*r.errors).*field) : std::string();
     };
-    fmt::print("{:<10} {:>9} {:>9} {:>9} {:>9} {:>10} {:>10} {:>8.2f}\n", r.name,
+    std::string std_m = "-";  // the model's stated error at a pair, where it has one
+    if (r.model && r.model->error_model())
+      std_m = metres(r.model->error_model()->std_at(0.0));
+    fmt::print("{:<10} {:>9} {:>9} {:>9} {:>9} {:>9} {:>10} {:>10} {:>8.2f}\n", r.name,
                e(&ErrorStatistics::mean), e(&ErrorStatistics::median), e(&ErrorStatistics::p95),
-               r.summary.cv_error_m ? metres(*r.summary.cv_error_m) : "-",
+               r.summary.cv_error_m ? metres(*r.summary.cv_error_m) : "-", std_m,
                metres(m.wall_distance.near_median_m), metres(r.back_and_forth.mean_m),
                r.summary.seconds);
   }
   if (truth)
     fmt::print("errors against the truth over {} domain points ({})\n",
                a.domain.points_in_plan.cols(), a.domain.kind);
+  fmt::print(
+      "std_m: the model's stated error at a pair, without the pairs' own noise (it grows away "
+      "from the pairs; `map` gives it per point)\n");
   fmt::print(
       "walls_m: median distance of the plan's walls, mapped, to the gridmap's walls "
       "(within 2 m of a pair)\n");
