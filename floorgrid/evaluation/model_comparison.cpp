@@ -18,6 +18,7 @@ MappingOptions run_mapping_defaults() {
 
 std::vector<ModelReport> compare_models(const ReferencePairs& pairs, const EvaluationDomain& domain,
                                         const std::optional<GroundTruth>& truth,
+                                        const std::optional<PairNoise>& noise,
                                         const ModelComparisonOptions& options,
                                         const ModelProgress& progress) {
   std::vector<ModelReport> reports(options.models.size());
@@ -34,8 +35,6 @@ std::vector<ModelReport> compare_models(const ReferencePairs& pairs, const Evalu
   const CrossValidationKind auto_kind = options.mapping.auto_select.cv.kind;
   const std::vector<std::string> candidates = options.mapping.auto_select.candidates;
   std::map<std::string, CrossValidationResult> cross_validated, by_runs;
-  // The pairs' own noise, taken out of every model's held-out errors for its std_m.
-  const std::optional<PairNoise> noise = pair_noise(pairs);
   for (std::size_t done = 0; done < order.size(); ++done) {
     const std::size_t k = order[done];
     const std::string& name = options.models[k];
@@ -52,6 +51,7 @@ std::vector<ModelReport> compare_models(const ReferencePairs& pairs, const Evalu
         chooser->reuse_cross_validation(auto_kind == CrossValidationKind::runs ? by_runs
                                                                                : cross_validated);
         chooser->reuse_blocked_cross_validation(cross_validated);
+        chooser->reuse_pair_noise(noise);
       }
       report.summary = model->fit(pairs);
       if (options.cv_folds >= 2 && name == "auto") {

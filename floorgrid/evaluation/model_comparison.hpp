@@ -10,6 +10,7 @@
 #include "floorgrid/evaluation/domain.hpp"
 #include "floorgrid/evaluation/model_evaluation.hpp"
 #include "floorgrid/mapping/mapping_factory.hpp"
+#include "floorgrid/mapping/pair_noise.hpp"
 
 namespace floorgrid {
 
@@ -52,9 +53,11 @@ using ModelProgress =
 
 /// Fits every model to `pairs`, cross-validates it, and (with a domain and a truth) measures its
 /// errors and its back-and-forth drift over the domain. A model that cannot be fitted is
-/// reported with its failure instead of stopping the others.
+/// reported with its failure instead of stopping the others. `noise` is the pairs' own
+/// (pair_noise), taken out of every model's std_m.
 std::vector<ModelReport> compare_models(const ReferencePairs& pairs, const EvaluationDomain& domain,
                                         const std::optional<GroundTruth>& truth,
+                                        const std::optional<PairNoise>& noise,
                                         const ModelComparisonOptions& options,
                                         const ModelProgress& progress = {});
 

@@ -128,7 +128,7 @@ Folds run_folds(std::size_t n, std::size_t folds, std::size_t runs_per_fold) {
   const std::size_t runs = result.count * runs_per_fold;
   for (std::size_t i = 0; i < n; ++i) {
     result.order[i] = i;
-    result.fold_of[i] = std::min(i * runs / n, runs - 1) % result.count;
+    result.fold_of[i] = run_stretch(i, n, runs) % result.count;
   }
   return result;
 }

@@ -45,6 +45,17 @@ Folds run_folds(std::size_t n, std::size_t folds, std::size_t runs_per_fold);
 /// Stretches per fold of run_folds as cross-validation deals them.
 inline constexpr std::size_t kRunsPerFold = 3;
 
+/// Stretches of the run the pairs are cut into where pairs of one stretch may share an error
+/// and pairs of different stretches count as independent: the standard error of a paired
+/// score difference, and the pairs' own noise (pair_noise).
+inline constexpr std::size_t kRunStretches = 40;
+
+/// The stretch pair i of n falls in (0 .. stretches - 1), of `stretches` stretches of (nearly)
+/// equal length in the pairs' order.
+inline std::size_t run_stretch(std::size_t i, std::size_t n, std::size_t stretches) {
+  return i * stretches / n;
+}
+
 /// The block side blocked_folds uses when none is given: kLargestAutoBlock metres, shrunk (by
 /// 0.8 each step) until the points fill at least kAutoBlocksPerFold blocks per fold, but never
 /// below twice the median distance between neighbouring points (density), so a block always

@@ -42,9 +42,6 @@ void validate(const CrossValidationOptions& cv, const std::string& prefix) {
 
 namespace {
 
-/// Stretches of the run the pairs are cut into for the standard error of a paired difference.
-constexpr std::size_t kPairedStretches = 40;
-
 /// Each model's mean squared error over the `kept` pairs (infinite for a model whose errors are
 /// not one per pair, or with an infinite error on a kept pair).
 std::vector<double> mean_squares_over(const std::vector<std::vector<double>>& errors,
@@ -203,7 +200,7 @@ double paired_score_difference_se(const std::vector<double>& a, const std::vecto
     const double d = a[i] * a[i] - b[i] * b[i];
     if (!std::isfinite(d))
       return kInfinity;
-    const std::size_t s = i * stretches / n;
+    const std::size_t s = run_stretch(i, n, stretches);
     sums[s] += d;
     counts[s] += 1.0;
   }
@@ -309,7 +306,7 @@ void AutoMapping::fit_model(const ReferencePairs& pairs, FitSummary& summary) {
     for (std::size_t k = 0; k < results.size(); ++k) {
       if (k != lowest) {
         standard_errors[k] =
-            paired_score_difference_se(errors[k], errors[lowest], kept, kPairedStretches);
+            paired_score_difference_se(errors[k], errors[lowest], kept, kRunStretches);
       }
     }
     for (std::size_t k = 0; k < lowest; ++k) {
@@ -353,8 +350,8 @@ void AutoMapping::fit_model(const ReferencePairs& pairs, FitSummary& summary) {
       : options_->auto_select.cv.kind == CrossValidationKind::blocked ? &results[pick]
                                                                       : nullptr;
   chosen_->set_error_model(fit_model_error(chosen, pairs, options_->auto_select.cv,
-                                           pair_noise(pairs), blocked,
-                                           paired ? &results[pick] : nullptr));
+                                           known_noise_ ? *known_noise_ : pair_noise(pairs),
+                                           blocked, paired ? &results[pick] : nullptr));
   set_error_model(chosen_->error_model());
   summary.rms_m = inner.rms_m;
   summary.inliers = inner.inliers;

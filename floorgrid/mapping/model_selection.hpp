@@ -153,6 +153,9 @@ class AutoMapping : public PointMapping {
   void reuse_blocked_cross_validation(std::map<std::string, CrossValidationResult> results) {
     known_blocked_ = std::move(results);
   }
+  /// The pairs' own noise (pair_noise) already estimated on the pairs fit() will be given:
+  /// used for the chosen model's std_m instead of estimating it again.
+  void reuse_pair_noise(std::optional<PairNoise> noise) { known_noise_ = std::move(noise); }
   /// The model chosen (after fit or load).
   const PointMapping& chosen() const { return *chosen_; }
   /// Cross-validated mean error per candidate, metres (infinite: could not be fitted).
@@ -168,6 +171,8 @@ class AutoMapping : public PointMapping {
   std::unique_ptr<PointMapping> chosen_;
   std::map<std::string, CrossValidationResult> known_;
   std::map<std::string, CrossValidationResult> known_blocked_;
+  /// Set by reuse_pair_noise: the estimate (itself empty where the pairs gave none).
+  std::optional<std::optional<PairNoise>> known_noise_;
   std::map<std::string, double> table_;
 };
 

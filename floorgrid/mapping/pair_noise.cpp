@@ -30,7 +30,7 @@ std::optional<PairNoise> pair_noise(const ReferencePairs& pairs, const PairNoise
     return std::nullopt;
   const double radius = options.radius / scale;
   const auto stretch_of = [&](Eigen::Index i) {
-    return static_cast<std::size_t>(i) * options.stretches / static_cast<std::size_t>(n);
+    return run_stretch(static_cast<std::size_t>(i), static_cast<std::size_t>(n), options.stretches);
   };
   const PointIndex2D index(pairs.points_in_plan);
   const std::size_t queries = std::min(options.queries, static_cast<std::size_t>(n));

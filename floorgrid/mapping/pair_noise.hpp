@@ -4,6 +4,7 @@
 #include <optional>
 
 #include "floorgrid/geometry/reference_pairs.hpp"
+#include "floorgrid/mapping/cross_validation_folds.hpp"
 
 namespace floorgrid {
 
@@ -12,10 +13,10 @@ struct PairNoiseOptions {
   /// Grid metres (the plan's units scaled by the pairs' similarity): two pairs this close in
   /// the plan count as measuring the same place.
   double radius = 0.3;
-  /// The pairs, in the order they were made, are cut into this many stretches of equal count;
+  /// The pairs, in the order they were made, are cut into this many stretches (run_stretch);
   /// two pairs of one stretch may share a pose error, two of different stretches count as
   /// independent visits.
-  std::size_t stretches = 40;
+  std::size_t stretches = kRunStretches;
   /// Pairs whose neighbours are looked at, spread evenly over all (cost bound).
   std::size_t queries = 4000;
   /// Neighbours of another stretch per query pair, nearest first.

@@ -69,7 +69,7 @@ void fit_and_judge_models(const AlignmentInputs& in, const AlignmentOptions& opt
   const ReferencePairs& pairs = a.localization.pairs;
   const auto fit_start = Clock::now();
   std::vector<ModelReport> reports =
-      compare_models(pairs, a.domain, a.truth, options.models,
+      compare_models(pairs, a.domain, a.truth, a.pair_noise, options.models,
                      [&](const std::string& model, std::size_t done, std::size_t total) {
                        if (progress)
                          progress({"fit", model, done, total});
