@@ -10,12 +10,18 @@ packages=(
   libeigen3-dev libnanoflann-dev libopencv-core-dev libopencv-imgproc-dev
   libpng-dev zlib1g-dev libyaml-cpp-dev libdime-dev
   libcli11-dev nlohmann-json3-dev libfmt-dev libspdlog-dev libcpp-httplib-dev
+  # robot-log containers: ROS 1 bags (bz2, lz4 chunks), MCAP (lz4, zstd), rosbag2 (sqlite3)
+  liblz4-dev libzstd-dev libbz2-dev libsqlite3-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
   # OpenCV calib3d: only bench/ransac_bench links it (cv::estimateAffinePartial2D comparison)
   libopencv-calib3d-dev
   # independent DXF reader used only by tests (never linked)
   python3-ezdxf
+  # independent writers of test bags (ROS 1: python3-rosbag and its message packages) and GDAL's
+  # tools that check the exported VRT (test tools only, never linked)
+  python3-rosbag python3-roslz4 python3-sensor-msgs python3-nav-msgs python3-tf2-msgs
+  python3-geometry-msgs gdal-bin
   # make fuzz: libFuzzer from clang-16 (clang-14 cannot compile libstdc++ 12's <ranges>)
   clang-16 libclang-rt-16-dev
 )
