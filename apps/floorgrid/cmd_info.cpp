@@ -113,7 +113,39 @@ void print_dxf(const json& j, const std::string& indent) {
   print_warnings(j, indent);
 }
 
+/// A bag's topics, and how its run was read (or why it could not be).
+void print_bag(const json& j, const std::string& indent) {
+  fmt::print("{}topics      {} messages over {:.1f} s\n", indent,
+             j["bag_messages"].get<std::uint64_t>(), j["bag_duration_s"].get<double>());
+  for (const json& t : j["topics"]) {
+    const std::string rate =
+        t["rate_hz"].is_null() ? "" : fmt::format("{:.1f} Hz", t["rate_hz"].get<double>());
+    fmt::print("{}  {:<24} {:<32} {:>8} {:>9} {}\n", indent, t["topic"].get<std::string>(),
+               t["type"].get<std::string>(), t["messages"].get<std::uint64_t>(), rate,
+               t["encoding"].get<std::string>());
+  }
+  for (const json& w : j["bag_warnings"])
+    fmt::print("{}warning     {}\n", indent, w.get<std::string>());
+  if (j.contains("run_error")) {
+    fmt::print("{}run         not readable as a run: {}\n", indent,
+               j["run_error"].get<std::string>());
+    return;
+  }
+  const json& m = j["laser_mount"];
+  fmt::print("{}run         scans from {} (frame {}), odometry from {}\n", indent,
+             j["scan_topic"].get<std::string>(), j["laser_frame"].get<std::string>(),
+             j["odometry_source"].get<std::string>());
+  fmt::print("{}laser mount x {:.3f} m, y {:.3f} m, yaw {:.1f} deg{}\n", indent, m[0].get<double>(),
+             m[1].get<double>(), m[2].get<double>() * 180.0 / 3.14159265358979,
+             j["laser_upside_down"].get<bool>() ? ", upside down" : "");
+}
+
 void print_log(const json& j, const std::string& indent) {
+  if (j.contains("format")) {
+    print_bag(j, indent);
+    if (j.contains("run_error"))
+      return;
+  }
   fmt::print("{}lines       {}, duration {:.1f} s (timestamps {:.3f} .. {:.3f})\n", indent,
              j["lines"].get<std::size_t>(), j["duration_s"].get<double>(),
              j["first_timestamp"].get<double>(), j["last_timestamp"].get<double>());
@@ -227,7 +259,8 @@ void add_info_command(CLI::App& root) {
   };
   auto args = std::make_shared<Args>();
   cmd->add_option("PATH", args->path,
-                  "map YAML or PGM/PNG image, DXF plan, CARMEN log (.gz), pairs CSV, or dataset "
+                  "map YAML or PGM/PNG image, DXF plan, CARMEN log (.gz), ROS 1 bag, MCAP, rosbag2 "
+                  "(.db3 or its folder), pairs CSV, or dataset "
                   "(dataset.yaml or its folder)")
       ->required();
   cmd->add_flag("--json", args->json, "print JSON instead of text");
@@ -244,7 +277,9 @@ void add_info_command(CLI::App& root) {
       std::cout << j.dump(2) << "\n";
       return;
     }
-    fmt::print("{}: {}\n", args->path, kind_title(j["kind"].get<std::string>()));
+    fmt::print("{}: {}\n", args->path,
+               j.contains("format") ? j["format"].get<std::string>()
+                                    : std::string(kind_title(j["kind"].get<std::string>())));
     print_any(j, "  ");
   });
 }

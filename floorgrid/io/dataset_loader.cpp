@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "floorgrid/core/error.hpp"
+#include "floorgrid/io/bag_log.hpp"
 #include "floorgrid/io/carmen_log.hpp"
 #include "floorgrid/io/describe.hpp"
 #include "floorgrid/io/image_io.hpp"
@@ -169,6 +170,30 @@ PlanUnitDecision decide_units(const OccupancyGrid& gridmap, DxfFloorplan& dxf,
   return decision;
 }
 
+/// The manifest's log: a ROS 1 bag, an MCAP file or a rosbag2 bag (told by content), else a
+/// CARMEN log. Warnings of the reading join `warnings`, prefixed with the file.
+RobotLog read_run(const DatasetManifest& m, std::vector<std::string>& warnings) {
+  const std::string file = m.log->string();
+  if (detect_bag_format(*m.log)) {
+    BagLogOptions options;
+    options.scan_topic = m.log_scan_topic;
+    options.odom_topic = m.log_odom_topic;
+    options.base_frame = m.log_base_frame;
+    options.odom_frame = m.log_odom_frame;
+    options.laser = m.laser;
+    BagLog read = read_bag_log(*m.log, options);
+    for (const std::string& warning : read.summary.warnings)
+      warnings.push_back(file + ": " + warning);
+    return read;
+  }
+  CarmenReadOptions options;
+  options.laser = m.laser;
+  CarmenLog read = read_carmen_log(*m.log, options);
+  for (const std::string& warning : read.summary.warnings)
+    warnings.push_back(file + ": " + warning);
+  return read;
+}
+
 }  // namespace
 
 LoadedDataset load_dataset(const std::filesystem::path& path, const PlanRasterOptions& raster,
@@ -218,12 +243,7 @@ LoadedDataset load_dataset(const std::filesystem::path& path, const PlanRasterOp
   if (!d.plan)
     crop_large_map(d.plan_grid, "floorplan " + m.floorplan.string(), limits, d.warnings);
   if (m.log) {
-    CarmenReadOptions options;
-    options.laser = m.laser;
-    CarmenLog read = read_carmen_log(*m.log, options);
-    for (const std::string& warning : read.summary.warnings)
-      d.warnings.push_back(m.log->string() + ": " + warning);
-    RobotLog log = std::move(read);
+    RobotLog log = read_run(m, d.warnings);
     if (m.odometry_noise) {
       const auto& a = *m.odometry_noise;
       const MotionNoise noise{.alpha1 = a[0], .alpha2 = a[1], .alpha3 = a[2], .alpha4 = a[3]};

@@ -94,7 +94,8 @@ const std::vector<std::string>& manifest_keys() {
   static const std::vector<std::string> keys = {
       "floorplan", "floorplan_resolution", "floorplan_origin", "floorplan_units", "floorplan_scale",
       "floorplan_layers", "floorplan_layers_exclude", "gridmap", "gridmap_resolution",
-      "gridmap_origin", "log", "initial_pose", "laser", "odometry_noise", "truth",
+      "gridmap_origin", "log", "log_topics", "log_frames", "initial_pose", "laser",
+      "odometry_noise", "truth",
       // the project's own keys
       "name", "odometry_noise_seed"};
   return keys;
@@ -148,6 +149,16 @@ DatasetManifest read_manifest(const std::filesystem::path& path) {
   m.gridmap_origin = yaml.optional_pose("gridmap_origin");
   if (yaml.has("log"))
     m.log = resolve(yaml, "log", folder);
+  if (const auto topics = yaml.optional_map("log_topics")) {
+    topics->reject_unknown_keys({"scan", "odom"});
+    m.log_scan_topic = topics->optional_string("scan");
+    m.log_odom_topic = topics->optional_string("odom");
+  }
+  if (const auto frames = yaml.optional_map("log_frames")) {
+    frames->reject_unknown_keys({"base", "odom"});
+    m.log_base_frame = frames->optional_string("base");
+    m.log_odom_frame = frames->optional_string("odom");
+  }
 
   if (const auto initial = yaml.optional_map("initial_pose")) {
     initial->reject_unknown_keys({"plan", "grid"});
@@ -211,6 +222,19 @@ void write_manifest(const DatasetManifest& m) {
     out += "gridmap_origin: " + pose_text(*m.gridmap_origin) + "\n";
   if (m.log)
     out += "log: " + quoted(relative_to(*m.log, folder)) + "\n";
+  const auto map_line = [&](const char* key, const char* a, const std::optional<std::string>& va,
+                            const char* b, const std::optional<std::string>& vb) {
+    if (!va && !vb)
+      return;
+    out += fmt::format("{}: {{", key);
+    if (va)
+      out += fmt::format("{}: {}", a, quoted(*va));
+    if (vb)
+      out += fmt::format("{}{}: {}", va ? ", " : "", b, quoted(*vb));
+    out += "}\n";
+  };
+  map_line("log_topics", "scan", m.log_scan_topic, "odom", m.log_odom_topic);
+  map_line("log_frames", "base", m.log_base_frame, "odom", m.log_odom_frame);
   if (m.initial_pose) {
     out += "initial_pose:\n  plan: " + pose_text(m.initial_pose->plan) +
            "\n  grid: " + pose_text(m.initial_pose->grid) + "\n";

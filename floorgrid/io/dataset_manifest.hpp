@@ -26,19 +26,21 @@ struct DatasetTruth {
 /// A dataset manifest, `dataset.yaml` (a contract: keys are extended, never renamed).
 /// Every path is resolved against the manifest's folder.
 struct DatasetManifest {
-  std::filesystem::path manifest_path;                  ///< the dataset.yaml read or to write
-  std::string name;                                     ///< optional display name (project key)
-  std::filesystem::path floorplan;                      ///< DXF, map YAML, or a bare image
-  std::optional<double> floorplan_resolution;           ///< bare image only: metres per pixel
-  std::optional<Pose2> floorplan_origin;                ///< bare image only
-  std::string floorplan_units = "auto";                 ///< DXF: auto | m | cm | mm | in | ft
-  std::optional<double> floorplan_scale = 1.0;          ///< a factor, or nullopt for `auto`
-  std::vector<std::string> floorplan_layers;            ///< DXF include globs (empty: all)
-  std::vector<std::string> floorplan_layers_exclude;    ///< DXF exclude globs
-  std::filesystem::path gridmap;                        ///< map YAML or a bare image
-  std::optional<double> gridmap_resolution;             ///< bare image only: metres per pixel
-  std::optional<Pose2> gridmap_origin;                  ///< bare image only
-  std::optional<std::filesystem::path> log;             ///< CARMEN log, .gz allowed
+  std::filesystem::path manifest_path;                ///< the dataset.yaml read or to write
+  std::string name;                                   ///< optional display name (project key)
+  std::filesystem::path floorplan;                    ///< DXF, map YAML, or a bare image
+  std::optional<double> floorplan_resolution;         ///< bare image only: metres per pixel
+  std::optional<Pose2> floorplan_origin;              ///< bare image only
+  std::string floorplan_units = "auto";               ///< DXF: auto | m | cm | mm | in | ft
+  std::optional<double> floorplan_scale = 1.0;        ///< a factor, or nullopt for `auto`
+  std::vector<std::string> floorplan_layers;          ///< DXF include globs (empty: all)
+  std::vector<std::string> floorplan_layers_exclude;  ///< DXF exclude globs
+  std::filesystem::path gridmap;                      ///< map YAML or a bare image
+  std::optional<double> gridmap_resolution;           ///< bare image only: metres per pixel
+  std::optional<Pose2> gridmap_origin;                ///< bare image only
+  std::optional<std::filesystem::path> log;           ///< CARMEN log, .gz allowed
+  /// `log_topics: {scan, odom}` and `log_frames: {base, odom}` of a bag log (absent: found)
+  std::optional<std::string> log_scan_topic, log_odom_topic, log_base_frame, log_odom_frame;
   std::optional<InitialPoses> initial_pose;             ///< absent: global localization
   LaserSettings laser;                                  ///< overrides of the log's laser settings
   std::optional<std::array<double, 4>> odometry_noise;  ///< alpha1..alpha4 added to the log

@@ -9,6 +9,7 @@
 
 #include "floorgrid/core/error.hpp"
 #include "floorgrid/io/atomic_file.hpp"
+#include "floorgrid/io/bag_log.hpp"
 #include "floorgrid/io/carmen_log.hpp"
 #include "floorgrid/io/dataset_manifest.hpp"
 #include "floorgrid/io/dxf_reader.hpp"
@@ -119,9 +120,8 @@ json setting_json(const UsedSetting& s, double factor) {
   return {{"value", s.value * factor}, {"source", to_string(s.source)}, {"detail", s.detail}};
 }
 
-json describe_log(const std::filesystem::path& path, const CarmenReadOptions& options = {}) {
-  const CarmenLog log = read_carmen_log(path, options);
-  const RobotLogSummary& s = log.summary;
+/// The run's summary as `info` shows it, for a CARMEN log or a bag.
+json run_json(const RobotLog& log, const RobotLogSummary& s) {
   json messages = json::object();
   std::vector<std::string> unknown_types;
   static const std::vector<std::string> kKnown = {
@@ -169,6 +169,53 @@ json describe_log(const std::filesystem::path& path, const CarmenReadOptions& op
           {"warnings", s.warnings}};
 }
 
+json describe_carmen_log(const std::filesystem::path& path, const LaserSettings& laser) {
+  CarmenReadOptions options;
+  options.laser = laser;
+  const CarmenLog log = read_carmen_log(path, options);
+  return run_json(log, log.summary);
+}
+
+json describe_bag(const std::filesystem::path& path, BagFormat format,
+                  const BagLogOptions& options) {
+  const BagContents contents = bag_contents(path);
+  json topics = json::array();
+  for (const BagTopic& t : contents.topics) {
+    const double span = static_cast<double>(t.last_ns - t.first_ns) * 1e-9;
+    topics.push_back(
+        {{"topic", t.topic},
+         {"type", t.type},
+         {"encoding", t.encoding == MessageEncoding::cdr ? "cdr" : "ros1"},
+         {"messages", t.messages},
+         {"rate_hz", span > 0.0 && t.messages > 1 ? json(static_cast<double>(t.messages - 1) / span)
+                                                  : json(nullptr)}});
+  }
+  json j = {{"format", to_string(format)},
+            {"topics", topics},
+            {"bag_messages", contents.messages},
+            {"bag_duration_s", static_cast<double>(contents.end_ns - contents.start_ns) * 1e-9},
+            {"bag_warnings", contents.warnings}};
+  // The run needs a scan topic it can tell: a bag it cannot read as one is still described.
+  try {
+    const BagLog log = read_bag_log(path, options);
+    j.update(run_json(log, log.summary));
+    j["scan_topic"] = log.scan_topic;
+    j["odometry_source"] = log.odometry_source;
+    j["laser_frame"] = log.laser_frame;
+    j["laser_mount"] = {log.laser_mount.x, log.laser_mount.y, log.laser_mount.theta};
+    j["laser_upside_down"] = log.laser_upside_down;
+  } catch (const InputError& e) {
+    j["run_error"] = e.what();
+  }
+  return j;
+}
+
+json describe_log(const std::filesystem::path& path, const BagLogOptions& options = {}) {
+  if (const std::optional<BagFormat> format = detect_bag_format(path))
+    return describe_bag(path, *format, options);
+  return describe_carmen_log(path, options.laser);
+}
+
 json describe_pairs(const std::filesystem::path& path) {
   const ReferencePairs pairs = read_pairs_csv(path);
   Eigen::AlignedBox2d plan, grid;
@@ -205,7 +252,11 @@ json describe_dataset(const std::filesystem::path& path) {
   j["gridmap"]["path"] = m.gridmap.string();
   j["gridmap"]["kind"] = "map";
   if (m.log) {
-    CarmenReadOptions options;
+    BagLogOptions options;
+    options.scan_topic = m.log_scan_topic;
+    options.odom_topic = m.log_odom_topic;
+    options.base_frame = m.log_base_frame;
+    options.odom_frame = m.log_odom_frame;
     options.laser = m.laser;
     j["log"] = describe_log(*m.log, options);
     j["log"]["kind"] = "log";
@@ -273,6 +324,8 @@ std::string to_string(FileKind kind) {
 
 FileKind detect_file_kind(const std::filesystem::path& path) {
   std::error_code ec;
+  if (detect_bag_format(path))
+    return FileKind::log;
   if (std::filesystem::is_directory(path, ec))
     return FileKind::dataset;
   if (!std::filesystem::exists(path, ec))

@@ -1,0 +1,99 @@
+#include "floorgrid/io/bag_file.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <array>
+#include <cstring>
+#include <fstream>
+
+#include "floorgrid/core/error.hpp"
+
+namespace floorgrid::io {
+namespace {
+
+constexpr std::string_view kRos1Magic = "#ROSBAG V2.0\n";
+constexpr std::string_view kMcapMagic = "\x89MCAP0\r\n";
+constexpr std::string_view kSqliteMagic{"SQLite format 3\0", 16};
+
+/// The storage a rosbag2 folder's metadata.yaml names, or nullopt when it has none.
+std::optional<BagFormat> rosbag2_folder_format(const std::filesystem::path& folder) {
+  const std::filesystem::path metadata = folder / "metadata.yaml";
+  if (!std::filesystem::is_regular_file(metadata))
+    return std::nullopt;
+  std::string storage;
+  try {
+    const YAML::Node root = YAML::LoadFile(metadata.string());
+    storage = root["rosbag2_bagfile_information"]["storage_identifier"].as<std::string>("");
+  } catch (const YAML::Exception& e) {
+    throw InputError("not a rosbag2 metadata file: " + std::string(e.what()), metadata.string());
+  }
+  if (storage == "sqlite3")
+    return BagFormat::rosbag2_sqlite;
+  if (storage == "mcap")
+    return BagFormat::mcap;
+  throw InputError("rosbag2 storage '" + storage + "' is not supported (sqlite3 or mcap)",
+                   metadata.string(), 0, "storage_identifier");
+}
+
+BagFormat require_format(const std::filesystem::path& path) {
+  if (const std::optional<BagFormat> format = detect_bag_format(path))
+    return *format;
+  throw InputError("not a ROS 1 bag, an MCAP file or a rosbag2 bag", path.string());
+}
+
+}  // namespace
+
+const char* to_string(BagFormat format) {
+  switch (format) {
+    case BagFormat::ros1:
+      return "ROS 1 bag";
+    case BagFormat::mcap:
+      return "MCAP";
+    case BagFormat::rosbag2_sqlite:
+      return "rosbag2 sqlite3";
+  }
+  return "?";
+}
+
+std::optional<BagFormat> detect_bag_format(const std::filesystem::path& path) {
+  if (std::filesystem::is_directory(path))
+    return rosbag2_folder_format(path);
+  std::ifstream in(path, std::ios::binary);
+  std::array<char, 16> head{};
+  in.read(head.data(), head.size());
+  const std::string_view got(head.data(), static_cast<std::size_t>(in.gcount()));
+  if (got.starts_with(kRos1Magic))
+    return BagFormat::ros1;
+  if (got.starts_with(kMcapMagic))
+    return BagFormat::mcap;
+  if (got.starts_with(kSqliteMagic))
+    return BagFormat::rosbag2_sqlite;
+  return std::nullopt;
+}
+
+BagContents bag_contents(const std::filesystem::path& path) {
+  switch (require_format(path)) {
+    case BagFormat::ros1:
+      return ros1_bag_contents(path);
+    case BagFormat::mcap:
+      return mcap_contents(path);
+    case BagFormat::rosbag2_sqlite:
+      return rosbag2_sqlite_contents(path);
+  }
+  return {};
+}
+
+BagContents read_bag(const std::filesystem::path& path, const BagVisitor& visit,
+                     const std::set<std::string>* topics) {
+  switch (require_format(path)) {
+    case BagFormat::ros1:
+      return read_ros1_bag(path, visit, topics);
+    case BagFormat::mcap:
+      return read_mcap(path, visit, topics);
+    case BagFormat::rosbag2_sqlite:
+      return read_rosbag2_sqlite(path, visit, topics);
+  }
+  return {};
+}
+
+}  // namespace floorgrid::io
