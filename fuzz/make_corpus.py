@@ -5,7 +5,7 @@ files in ../shared/data when it is there, and the model files of tests/fixtures/
 
 Usage: fuzz/make_corpus.py OUT_DIR [DATA_DIR]
 Writes OUT_DIR/<target>/ for dxf, image, map_yaml, carmen, pairs_csv, points_csv, model_json,
-dataset_yaml. Every seed is at most MAX_SEED bytes (the fuzzers run with -max_len of that size).
+dataset_yaml, ros_messages. Every seed is at most MAX_SEED bytes (the fuzzers run with -max_len of that size).
 """
 import gzip
 import os
@@ -204,6 +204,44 @@ def compact_model(path: Path) -> str:
     return json.dumps(shrink(json.loads(path.read_text())), separators=(",", ":"))
 
 
+def ros_payload(cdr: bool, fields) -> bytes:
+    """A message payload: fields are (struct format char, value) or ("s", text); CDR aligns
+    each primitive to its size after the 4-byte encapsulation header."""
+    out = bytearray(b"\x00\x01\x00\x00" if cdr else b"")
+    base = 4 if cdr else 0
+    for kind, value in fields:
+        if kind == "s":
+            raw = value.encode() + (b"\0" if cdr else b"")
+            fields_out = [("I", len(raw))]
+        else:
+            raw, fields_out = None, [(kind, value)]
+        for k, v in fields_out:
+            size = struct.calcsize("<" + k)
+            while cdr and (len(out) - base) % size:
+                out.append(0)
+            out += struct.pack("<" + k, v)
+        if raw is not None:
+            out += raw
+    return bytes(out)
+
+
+def ros_message_seeds(out: Path) -> None:
+    for cdr in (False, True):
+        head = ([] if cdr else [("I", 7)]) + [("i" if cdr else "I", 12), ("I", 5), ("s", "laser")]
+        scan = head + [("f", v) for v in (-1.57, 1.57, 0.785, 0, 0, 0.02, 30)] + [
+            ("I", 5)] + [("f", v) for v in (1, 2, float("inf"), float("nan"), -float("inf"))] + [
+            ("I", 0)]
+        odom = head[:-1] + [("s", "odom"), ("s", "base_link")] + [
+            ("d", v) for v in (1, 2, 0, 0, 0, 0.2, 0.98)] + [("d", 0)] * 36 + [
+            ("d", v) for v in (0.3, 0, 0, 0, 0, 0.1)] + [("d", 0)] * 36
+        tf = [("I", 1)] + head[:-1] + [("s", "base_link"), ("s", "laser")] + [
+            ("d", v) for v in (0.2, 0, 0.3, 1, 0, 0, 0)]
+        for index, (name, fields) in enumerate((("scan", scan), ("odom", odom), ("tf", tf))):
+            selector = bytes([(index << 1) | int(cdr)])
+            put(out, "ros_messages", f"{name}-{'cdr' if cdr else 'ros1'}.bin",
+                selector + ros_payload(cdr, fields))
+
+
 def main() -> None:
     out = Path(sys.argv[1])
     data = Path(sys.argv[2]) if len(sys.argv) > 2 else ROOT.parent / "shared" / "data"
@@ -213,6 +251,7 @@ def main() -> None:
     for name, text in MAP_YAMLS.items():
         put(out, "map_yaml", name + ".yaml", text)
     put(out, "carmen", "plain.log", CARMEN)
+    ros_message_seeds(out)
     put(out, "carmen", "packed.log.gz", gzip.compress(CARMEN.encode(), mtime=0))
     for name, text in PAIRS.items():
         put(out, "pairs_csv", name + ".csv", text)
