@@ -12,7 +12,7 @@
 #include "apps/floorgrid/commands.hpp"
 #include "floorgrid/core/error.hpp"
 #include "floorgrid/io/atomic_file.hpp"
-#include "floorgrid/io/carmen_log.hpp"
+#include "floorgrid/io/robot_log_reader.hpp"
 #include "floorgrid/io/simulation_writer.hpp"
 #include "floorgrid/simulation/log_dataset.hpp"
 #include "floorgrid/simulation/simulator.hpp"
@@ -41,7 +41,7 @@ void simulate_log_dataset(const Args& a) {
   }
   const io::OutputFolder out_folder(a.out);
   spdlog::info("reading {}", a.from_log);
-  const io::CarmenLog log = io::read_carmen_log(a.from_log);
+  const io::ReadRobotLog log = io::read_robot_log(a.from_log);
   for (const std::string& warning : log.summary.warnings)
     spdlog::warn("{}: {}", a.from_log, warning);
   spdlog::info("mapping {} scans and drawing the plan (seed {})", log.scans.size(), a.seed);
@@ -100,10 +100,13 @@ void add_simulate_command(CLI::App& root) {
   cmd->add_option("--out", args->out, "output folder (created if needed)")->required();
   cmd->add_flag("--preview", args->preview,
                 "also write preview.png: the gridmap with the plan's walls through the exact warp");
-  auto* from_log = cmd->add_option("--from-log", args->from_log,
-                                   "a corrected CARMEN log (.gz allowed): make a semi-real dataset "
-                                   "from it instead of a preset")
-                       ->excludes(preset);
+  auto* from_log =
+      cmd->add_option(
+             "--from-log", args->from_log,
+             "a corrected log (CARMEN, .gz allowed, or a ROS bag/MCAP/rosbag2 whose odometry "
+             "is the corrected trajectory): make a semi-real dataset "
+             "from it instead of a preset")
+          ->excludes(preset);
   const auto needs_log = [&](CLI::Option* option) { option->needs(from_log); };
   needs_log(cmd->add_option("--plan-scale", args->plan_scale,
                             "from a log: the plan's true floorplan_scale (world m per plan m); "

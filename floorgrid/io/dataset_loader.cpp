@@ -6,12 +6,11 @@
 #include <cmath>
 
 #include "floorgrid/core/error.hpp"
-#include "floorgrid/io/bag_log.hpp"
-#include "floorgrid/io/carmen_log.hpp"
 #include "floorgrid/io/describe.hpp"
 #include "floorgrid/io/image_io.hpp"
 #include "floorgrid/io/map_io.hpp"
 #include "floorgrid/io/pairs_csv.hpp"
+#include "floorgrid/io/robot_log_reader.hpp"
 #include "floorgrid/io/system_memory.hpp"
 #include "floorgrid/io/truth_json.hpp"
 #include "floorgrid/maps/crop.hpp"
@@ -170,27 +169,18 @@ PlanUnitDecision decide_units(const OccupancyGrid& gridmap, DxfFloorplan& dxf,
   return decision;
 }
 
-/// The manifest's log: a ROS 1 bag, an MCAP file or a rosbag2 bag (told by content), else a
-/// CARMEN log. Warnings of the reading join `warnings`, prefixed with the file.
+/// The manifest's log (a bag or a CARMEN log, told by content). Warnings of the reading join
+/// `warnings`, prefixed with the file.
 RobotLog read_run(const DatasetManifest& m, std::vector<std::string>& warnings) {
-  const std::string file = m.log->string();
-  if (detect_bag_format(*m.log)) {
-    BagLogOptions options;
-    options.scan_topic = m.log_scan_topic;
-    options.odom_topic = m.log_odom_topic;
-    options.base_frame = m.log_base_frame;
-    options.odom_frame = m.log_odom_frame;
-    options.laser = m.laser;
-    BagLog read = read_bag_log(*m.log, options);
-    for (const std::string& warning : read.summary.warnings)
-      warnings.push_back(file + ": " + warning);
-    return read;
-  }
-  CarmenReadOptions options;
+  BagLogOptions options;
+  options.scan_topic = m.log_scan_topic;
+  options.odom_topic = m.log_odom_topic;
+  options.base_frame = m.log_base_frame;
+  options.odom_frame = m.log_odom_frame;
   options.laser = m.laser;
-  CarmenLog read = read_carmen_log(*m.log, options);
+  ReadRobotLog read = read_robot_log(*m.log, options);
   for (const std::string& warning : read.summary.warnings)
-    warnings.push_back(file + ": " + warning);
+    warnings.push_back(m.log->string() + ": " + warning);
   return read;
 }
 

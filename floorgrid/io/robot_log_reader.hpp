@@ -1,0 +1,21 @@
+#pragma once
+
+#include <filesystem>
+
+#include "floorgrid/io/bag_log.hpp"
+#include "floorgrid/io/robot_log_summary.hpp"
+#include "floorgrid/robot/robot_log.hpp"
+
+namespace floorgrid::io {
+
+/// A run read from any log floorgrid reads, and how it was read.
+struct ReadRobotLog : RobotLog {
+  RobotLogSummary summary;  ///< counts, settings used, warnings
+};
+
+/// Reads a ROS 1 bag, an MCAP file or a rosbag2 bag (told by content: read_bag_log with
+/// `options`), else a CARMEN log (read_carmen_log with `options.laser`). Throws InputError as
+/// those do.
+ReadRobotLog read_robot_log(const std::filesystem::path& path, const BagLogOptions& options = {});
+
+}  // namespace floorgrid::io
