@@ -177,8 +177,16 @@ class Scan {
     while (!cursor.at_end()) {
       const std::uint64_t record_offset = cursor.offset();
       const auto header_len = cursor.read<std::uint32_t>("a record's header length");
+      if (header_len > cursor.remaining())
+        file_.fail(record_offset, "a record's header of " + std::to_string(header_len) +
+                                      " bytes runs past the end of its chunk (" +
+                                      std::to_string(cursor.remaining()) + " bytes remain)");
       header_.parse(cursor.bytes(header_len, "a record header"), file_.name(), record_offset + 4);
       const auto data_len = cursor.read<std::uint32_t>("a record's data length");
+      if (data_len > cursor.remaining())
+        file_.fail(record_offset, "a record's data of " + std::to_string(data_len) +
+                                      " bytes runs past the end of its chunk (" +
+                                      std::to_string(cursor.remaining()) + " bytes remain)");
       const std::uint64_t data_offset = cursor.offset();
       const std::span<const std::uint8_t> record_data = cursor.bytes(data_len, "a record's data");
       switch (header_.op()) {
