@@ -23,8 +23,8 @@ enum class Op : std::uint8_t {
   bag_header = 0x03,    ///< the first record: index_pos, conn_count, chunk_count
   index_data = 0x04,    ///< after a chunk, per connection: (time, offset) of its messages
   chunk = 0x05,         ///< compression, size (uncompressed); data = connection + message records
-  connection = 0x07,    ///< conn, topic; data = a header with topic, type, md5sum, definition
   chunk_info = 0x06,    ///< in the index: chunk_pos, start/end time, per-connection counts
+  connection = 0x07,    ///< conn, topic; data = a header with topic, type, md5sum, definition
 };
 
 /// A record header's fields, pointing into the bytes it was parsed from (which must outlive it).
