@@ -5,7 +5,8 @@ files in ../shared/data when it is there, and the model files of tests/fixtures/
 
 Usage: fuzz/make_corpus.py OUT_DIR [DATA_DIR]
 Writes OUT_DIR/<target>/ for dxf, image, map_yaml, carmen, pairs_csv, points_csv, model_json,
-dataset_yaml, ros_messages. Every seed is at most MAX_SEED bytes (the fuzzers run with -max_len of that size).
+dataset_yaml, ros_messages, ros1_bag. Every seed is at most MAX_SEED bytes (the fuzzers run with
+-max_len of that size).
 """
 import gzip
 import os
@@ -188,6 +189,61 @@ MANIFESTS = {
 }
 
 
+# ---- ROS 1 bags ----
+
+def ros1_record(fields: dict, data: bytes = b"") -> bytes:
+    header = b"".join(struct.pack("<I", len(k) + 1 + len(v)) + k.encode() + b"=" + v
+                      for k, v in fields.items())
+    return struct.pack("<I", len(header)) + header + struct.pack("<I", len(data)) + data
+
+
+def ros1_bag(compression: str = "none", index: bool = True) -> bytes:
+    """A small ROS 1 bag 2.0 made by hand (the fuzz seeds must stay under MAX_SEED; the bag
+    header is not padded to 4096 bytes as rosbag pads it): one chunk with a connection and three
+    messages, its index data, and an index section of the connection and the chunk info."""
+    u8, u32, u64 = (lambda v: struct.pack("<B", v)), (lambda v: struct.pack("<I", v)), (
+        lambda v: struct.pack("<Q", v))
+    time = lambda sec, nsec: struct.pack("<II", sec, nsec)
+    conn_data = ros1_record({"topic": b"/scan", "type": b"std_msgs/String",
+                             "md5sum": b"992ce8a1687cec8c8bd883ec73ca41d1",
+                             "message_definition": b"string data\n"})[4:]
+    # A connection's data is a header on its own: drop the record's own data length.
+    conn_data = conn_data[:-4]
+    connection = ros1_record({"op": u8(7), "conn": u32(0), "topic": b"/scan"}, conn_data)
+    messages = [ros1_record({"op": u8(2), "conn": u32(0), "time": time(100 + k, 5)},
+                            u32(5) + b"hello") for k in range(3)]
+    plain = connection + b"".join(messages)
+    if compression == "bz2":
+        import bz2
+        packed = bz2.compress(plain)
+    elif compression == "lz4":
+        import roslz4  # Debian's python3-roslz4 (LZ4 frame format)
+        packed = roslz4.compress(plain)
+    else:
+        packed = plain
+    offsets, at = [], len(connection)
+    for m in messages:
+        offsets.append(at)
+        at += len(m)
+    index_data = ros1_record({"op": u8(4), "ver": u32(1), "conn": u32(0), "count": u32(3)},
+                             b"".join(time(100 + k, 5) + u32(o) for k, o in enumerate(offsets)))
+
+    def whole(index_pos: int) -> bytes:
+        head = ros1_record({"op": u8(3), "index_pos": u64(index_pos), "conn_count": u32(1),
+                            "chunk_count": u32(1)})
+        return b"#ROSBAG V2.0\n" + head
+
+    chunk_pos = len(whole(0))
+    chunk = ros1_record({"op": u8(5), "compression": compression.encode(),
+                         "size": u32(len(plain))}, packed)
+    chunk_info = ros1_record({"op": u8(6), "ver": u32(1), "chunk_pos": u64(chunk_pos),
+                              "start_time": time(100, 5), "end_time": time(102, 5),
+                              "count": u32(1)}, u32(0) + u32(3))
+    body = chunk + index_data
+    index_pos = chunk_pos + len(body) if index else 0
+    return whole(index_pos) + body + connection + chunk_info
+
+
 def compact_model(path: Path) -> str:
     """A model file made small enough for a seed: numbers to 6 digits, lists of points cut to
     their first 16 (every list of one model is cut alike, so their lengths still agree)."""
@@ -259,6 +315,14 @@ def main() -> None:
         put(out, "points_csv", name + ".csv", text)
     for name, text in MANIFESTS.items():
         put(out, "dataset_yaml", name + ".yaml", text)
+    for compression in ("none", "bz2", "lz4"):
+        try:
+            put(out, "ros1_bag", f"tiny-{compression}.bag", ros1_bag(compression))
+        except ImportError:
+            pass
+    put(out, "ros1_bag", "tiny-unindexed.bag", ros1_bag("none", index=False))
+    put(out, "ros1_bag", "fr079_5scans_lz4.bag",
+        (ROOT / "tests" / "bags" / "fr079_5scans_lz4.bag").read_bytes())
     for model in sorted((ROOT / "tests" / "fixtures" / "models").glob("*.json")):
         put(out, "model_json", model.name, compact_model(model))
     if data.is_dir():
