@@ -28,6 +28,9 @@ Eigen::Quaterniond quaternion(const RosQuaternion& q) {
 }
 
 double yaw_of(const RosQuaternion& q) {
+  // A planar robot's quaternion turns about z alone: its yaw directly, to the last bit.
+  if (q.x == 0.0 && q.y == 0.0 && (q.z != 0.0 || q.w != 0.0))
+    return normalize_angle(2.0 * std::atan2(q.z, q.w));
   const Eigen::Matrix3d R = quaternion(q).toRotationMatrix();
   return std::atan2(R(1, 0), R(0, 0));
 }
@@ -133,6 +136,29 @@ std::optional<Eigen::Isometry3d> frame_in(const TransformTree& tree, const std::
     at = link->second.first;
   }
   return std::nullopt;  // a loop
+}
+
+/// The value a float32 field was most likely set from: the shortest decimal (in units of
+/// `unit`: degrees for angles, metres for ranges) that rounds to the same float. LaserScan's
+/// fields are float32, but drivers are configured in decimal degrees and metres, as CARMEN logs
+/// print them; so a bag and the CARMEN log of the same run give the same double.
+double decimal_value(float value, double unit) {
+  if (!std::isfinite(value))
+    return value;
+  double power = 1.0;
+  for (int digits = 0; digits <= 7; ++digits, power *= 10.0) {
+    const double candidate = std::round(static_cast<double>(value) / unit * power) / power * unit;
+    if (static_cast<float>(candidate) == value)
+      return candidate;
+  }
+  return value;
+}
+
+constexpr double kDegree = std::numbers::pi / 180.0;
+
+/// Seconds since the epoch, correctly rounded (so 227623000 ns is exactly strtod's 0.227623).
+double seconds(std::int64_t ns) {
+  return static_cast<double>(ns) / 1e9;
 }
 
 }  // namespace
@@ -254,7 +280,7 @@ BagLog read_bag_log(const std::filesystem::path& path, const BagLogOptions& opti
       samples.begin(), samples.end(),
       [](const OdometrySample& a, const OdometrySample& b) { return a.stamp_ns < b.stamp_ns; });
   for (const OdometrySample& s : samples)
-    log.odometry.push_back({s.pose, s.tv, s.rv, 0.0, static_cast<double>(s.stamp_ns) * 1e-9, 0});
+    log.odometry.push_back({s.pose, s.tv, s.rv, 0.0, seconds(s.stamp_ns), 0});
 
   // The laser's mount: base -> the scans' frame through the static (and other) transforms.
   TransformTree tree;
@@ -298,17 +324,19 @@ BagLog read_bag_log(const std::filesystem::path& path, const BagLogOptions& opti
     }
     LaserScan scan;
     scan.type = "LaserScan";
-    scan.timestamp = static_cast<double>(s.header.stamp_ns) * 1e-9;
+    scan.timestamp = seconds(s.header.stamp_ns);
     scan.line = stamped.ordinal;
     scan.robot_pose = *robot;
     scan.laser_pose = robot->compose(log.laser_mount);
     const auto n = static_cast<double>(s.ranges.size());
+    const double angle_min = decimal_value(s.angle_min, kDegree);
+    const double increment = decimal_value(s.angle_increment, kDegree);
     const double message_start =
-        log.laser_upside_down ? -(s.angle_min + (n - 1.0) * s.angle_increment) : s.angle_min;
+        log.laser_upside_down ? -(angle_min + (n - 1.0) * increment) : angle_min;
     scan.start_angle = options.laser.start_angle.value_or(message_start);
-    scan.angle_increment = options.laser.angle_increment.value_or(s.angle_increment);
-    scan.max_range = options.laser.max_range.value_or(s.range_max);
-    scan.min_range = options.laser.min_range.value_or(s.range_min);
+    scan.angle_increment = options.laser.angle_increment.value_or(increment);
+    scan.max_range = options.laser.max_range.value_or(decimal_value(s.range_max, 1.0));
+    scan.min_range = options.laser.min_range.value_or(decimal_value(s.range_min, 1.0));
     if (!(scan.max_range > 0.0) || !(scan.min_range >= 0.0) || scan.min_range >= scan.max_range ||
         !(scan.angle_increment != 0.0) || !std::isfinite(scan.start_angle))
       throw InputError(fmt::format("scan {} on {} has range_min {} and range_max {}, angle_min "

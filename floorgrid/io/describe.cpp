@@ -199,6 +199,7 @@ json describe_bag(const std::filesystem::path& path, BagFormat format,
   try {
     const BagLog log = read_bag_log(path, options);
     j.update(run_json(log, log.summary));
+    j["unknown_types"] = json::array();  // a bag's topics are listed above, by type
     j["scan_topic"] = log.scan_topic;
     j["odometry_source"] = log.odometry_source;
     j["laser_frame"] = log.laser_frame;

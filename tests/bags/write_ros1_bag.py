@@ -22,6 +22,7 @@ concatenation.
 
 Usage: write_ros1_bag.py RECORDS.jsonl OUT.bag [--compression none|bz2|lz4]
                          [--chunk-threshold BYTES] [--no-odom] [--dump]
+                         [--mount x,y,yaw[,roll]] [--no-scan] [--extra-scan-topic TOPIC]
 """
 import argparse
 import hashlib
@@ -73,14 +74,17 @@ def odometry(record):
     return msg
 
 
-def transform(stamp, parent, child, x, y, yaw):
+def transform(stamp, parent, child, x, y, yaw, roll=0.0):
     t = TransformStamped()
     t.header.stamp = stamp
     t.header.frame_id = parent
     t.child_frame_id = child
     t.transform.translation.x = x
     t.transform.translation.y = y
-    t.transform.rotation = quaternion_of_yaw(yaw)
+    # rotation = Rz(yaw) * Rx(roll), as a quaternion
+    cy, sy = math.cos(yaw / 2.0), math.sin(yaw / 2.0)
+    cr, sr = math.cos(roll / 2.0), math.sin(roll / 2.0)
+    t.transform.rotation = Quaternion(x=cy * sr, y=sy * sr, z=sy * cr, w=cy * cr)
     return t
 
 
@@ -135,6 +139,10 @@ def main():
     parser.add_argument("--chunk-threshold", type=int, default=768 * 1024)
     parser.add_argument("--no-odom", action="store_true", help="leave out /odom (odometry "
                         "comes from /tf only)")
+    parser.add_argument("--mount", help="x,y,yaw[,roll]: the laser on base_link instead of the "
+                        "records' mount (roll pi: mounted upside down)")
+    parser.add_argument("--no-scan", action="store_true", help="leave out /scan")
+    parser.add_argument("--extra-scan-topic", help="also write every scan on this topic")
     parser.add_argument("--dump", action="store_true", help="also write each topic's "
                         "concatenated serialized messages to OUT.<topic>.bin")
     args = parser.parse_args()
@@ -142,6 +150,10 @@ def main():
     with open(args.records) as f:
         records = [json.loads(line) for line in f if line.strip()]
     mount = next((r for r in records if r["kind"] == "mount"), None)
+    if args.mount:
+        values = [float(v) for v in args.mount.split(",")]
+        mount = {"kind": "mount", "x": values[0], "y": values[1], "yaw": values[2],
+                 "roll": values[3] if len(values) > 3 else 0.0}
     first_stamp = next((r["stamp"] for r in records if "stamp" in r), None)
 
     with rosbag.Bag(args.out, "w", compression=args.compression,
@@ -150,7 +162,8 @@ def main():
         if mount is not None and first_stamp is not None:
             stamp = stamp_of(first_stamp)
             static = TFMessage(transforms=[transform(stamp, "base_link", "laser", mount["x"],
-                                                     mount["y"], mount["yaw"])])
+                                                     mount["y"], mount["yaw"],
+                                                     mount.get("roll", 0.0))])
             header = {"topic": "/tf_static", "type": TFMessage._type,
                       "md5sum": TFMessage._md5sum, "message_definition": TFMessage._full_text,
                       "callerid": "/write_ros1_bag", "latching": "1"}
@@ -163,7 +176,10 @@ def main():
                 rec.write("/tf", TFMessage(transforms=[
                     transform(stamp, "odom", "base_link", r["x"], r["y"], r["yaw"])]), stamp)
             elif r["kind"] == "scan":
-                rec.write("/scan", laser_scan(r), stamp_of(r["stamp"]))
+                if not args.no_scan:
+                    rec.write("/scan", laser_scan(r), stamp_of(r["stamp"]))
+                if args.extra_scan_topic:
+                    rec.write(args.extra_scan_topic, laser_scan(r), stamp_of(r["stamp"]))
         topics = rec.manifest()
 
     manifest = {"compression": args.compression, "chunk_threshold": args.chunk_threshold,

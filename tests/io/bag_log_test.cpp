@@ -1,0 +1,162 @@
+// A bag read as a run (io/bag_log): the same run as the CARMEN log it was written from, odometry
+// from /tf alone, a laser mounted off-centre and upside down, and the choices and refusals of
+// topics. The bags are written by an independent writer (tests/bags/write_ros1_bag.py, Debian's
+// python3-rosbag) from fr079's first 200 scans.
+#include "floorgrid/io/bag_log.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "floorgrid/io/carmen_log.hpp"
+#include "floorgrid/io/robot_log_reader.hpp"
+#include "tests/io/ros1_bag_test_support.hpp"
+#include "tests/support/expect_error.hpp"
+
+namespace floorgrid::io {
+namespace {
+
+namespace fs = std::filesystem;
+using ros1_test::bags;
+using test::TempDir;
+
+/// fr079's CARMEN log read by the CARMEN reader: the run the bags were written from.
+const CarmenLog& carmen_run() {
+  static const CarmenLog log =
+      read_carmen_log(test::data_path("fr079/freiburg-079-corrected.log.gz"));
+  return log;
+}
+
+void expect_same_pose(const Pose2& a, const Pose2& b, const std::string& what) {
+  EXPECT_NEAR(a.x, b.x, 1e-9) << what;
+  EXPECT_NEAR(a.y, b.y, 1e-9) << what;
+  EXPECT_NEAR(normalize_angle(a.theta - b.theta), 0.0, 1e-9) << what;
+}
+
+TEST(BagLog, TheSameRunAsTheCarmenLogItWasWrittenFrom) {
+  REQUIRE_ROS1_BAGS();
+  for (const char* compression : {"none", "lz4"}) {
+    const fs::path bag =
+        bags().bag(std::string("run-") + compression, std::string("--compression ") + compression);
+    const ReadRobotLog log = read_robot_log(bag);
+    const CarmenLog& carmen = carmen_run();
+    ASSERT_EQ(log.scans.size(), 200u);
+    for (std::size_t i = 0; i < log.scans.size(); ++i) {
+      const LaserScan& a = log.scans[i];
+      const LaserScan& b = carmen.scans[i];
+      const std::string what = std::string(compression) + " scan " + std::to_string(i);
+      EXPECT_NEAR(a.timestamp, b.timestamp, 1e-6) << what;
+      EXPECT_EQ(a.ranges, b.ranges) << what;  // float32 in both: bit for bit
+      // LaserScan's angles and ranges are float32; read as the decimal degrees and metres they
+      // round from, they are CARMEN's doubles exactly.
+      EXPECT_EQ(a.start_angle, b.start_angle) << what;
+      EXPECT_EQ(a.angle_increment, b.angle_increment) << what;
+      EXPECT_EQ(a.max_range, b.max_range) << what;
+      EXPECT_EQ(a.min_range, b.min_range) << what;
+      expect_same_pose(a.robot_pose, b.robot_pose, what);
+      expect_same_pose(a.laser_pose, b.laser_pose, what);
+      for (std::size_t k = 0; k < a.ranges.size(); k += 37)
+        EXPECT_EQ(a.range_kind(k), b.range_kind(k)) << what << " beam " << k;
+    }
+    EXPECT_EQ(log.odometry.size(), 200u);
+    EXPECT_TRUE(log.summary.warnings.empty());
+  }
+}
+
+TEST(BagLog, OdometryFromTfWhenThereIsNoOdometryTopic) {
+  REQUIRE_ROS1_BAGS();
+  const BagLog with = read_bag_log(bags().bag("run-lz4", "--compression lz4"));
+  const BagLog without = read_bag_log(bags().bag("no-odom", "--no-odom"));
+  EXPECT_EQ(with.odometry_source, "/odom");
+  EXPECT_EQ(without.odometry_source, "/tf (odom -> base_link)");
+  ASSERT_EQ(with.scans.size(), without.scans.size());
+  for (std::size_t i = 0; i < with.scans.size(); ++i)
+    expect_same_pose(with.scans[i].robot_pose, without.scans[i].robot_pose, std::to_string(i));
+}
+
+TEST(BagLog, ALaserMountedOffCentreRotatedAndUpsideDown) {
+  REQUIRE_ROS1_BAGS();
+  const Pose2 mount{0.2, 0.1, 0.5};
+  const BagLog upright = read_bag_log(bags().bag("mounted", "--mount 0.2,0.1,0.5"));
+  const BagLog flipped =
+      read_bag_log(bags().bag("flipped", "--mount 0.2,0.1,0.5,3.141592653589793"));
+  const CarmenLog& carmen = carmen_run();
+  EXPECT_FALSE(upright.laser_upside_down);
+  EXPECT_TRUE(flipped.laser_upside_down);
+  ASSERT_EQ(flipped.scans.size(), 200u);
+  for (std::size_t i = 0; i < flipped.scans.size(); i += 7) {
+    const LaserScan& original = carmen.scans[i];
+    for (const BagLog* log : {&upright, &flipped}) {
+      const LaserScan& s = log->scans[i];
+      // The robot's pose is the odometry's; the laser sits at the mount on it.
+      expect_same_pose(s.robot_pose, original.robot_pose, "robot " + std::to_string(i));
+      expect_same_pose(s.laser_pose, original.robot_pose.compose(mount),
+                       "laser " + std::to_string(i));
+    }
+    // Upright, beam k looks at a_k in the laser's frame; upside down, the same reading looks at
+    // -a_k: its beams turn clockwise, read in reverse.
+    const std::size_t n = original.ranges.size();
+    for (std::size_t k = 0; k < n; k += 11) {
+      const LaserScan& up = upright.scans[i];
+      const LaserScan& down = flipped.scans[i];
+      EXPECT_EQ(up.ranges[k], original.ranges[k]);
+      EXPECT_NEAR(up.angle(k), original.angle(k), 1e-6);
+      EXPECT_EQ(down.ranges[n - 1 - k], original.ranges[k]);
+      EXPECT_NEAR(down.angle(n - 1 - k), -original.angle(k), 1e-6);
+    }
+  }
+}
+
+TEST(BagLog, ScanTopicsFoundChosenOrRefused) {
+  REQUIRE_ROS1_BAGS();
+  const fs::path two = bags().bag("two-scans", "--extra-scan-topic /scan_rear");
+  test::expect_input_error([&] { read_bag_log(two); },
+                           {two.string(), "/scan, /scan_rear", "log_topics.scan"});
+  BagLogOptions options;
+  options.scan_topic = "/scan_rear";
+  EXPECT_EQ(read_bag_log(two, options).scans.size(), 200u);
+  options.scan_topic = "/odom";
+  test::expect_input_error([&] { read_bag_log(two, options); },
+                           {"/odom is a nav_msgs/Odometry, not a sensor_msgs/LaserScan"});
+  options.scan_topic = "/front";
+  test::expect_input_error([&] { read_bag_log(two, options); }, {"no topic /front", "/scan_rear"});
+  const fs::path none = bags().bag("no-scans", "--no-scan");
+  test::expect_input_error([&] { read_bag_log(none); },
+                           {none.string(), "no sensor_msgs/LaserScan topic", "/odom"});
+}
+
+TEST(BagLog, InfoAndPairsOnBags) {
+  REQUIRE_ROS1_BAGS();
+  const fs::path bag = bags().bag("run-lz4", "--compression lz4");
+  const test::CommandResult info = test::run_floorgrid("info --json " + test::quoted(bag));
+  ASSERT_EQ(info.status, 0) << info.err;
+  const nlohmann::json j = nlohmann::json::parse(info.out);
+  EXPECT_EQ(j["format"], "ROS 1 bag");
+  EXPECT_EQ(j["scan_topic"], "/scan");
+  EXPECT_EQ(j["laser_scans"], 200);
+  std::map<std::string, std::uint64_t> counts;
+  for (const auto& t : j["topics"])
+    counts[t["topic"]] = t["messages"];
+  const std::map<std::string, std::uint64_t> written = {
+      {"/scan", 200}, {"/odom", 200}, {"/tf", 200}, {"/tf_static", 1}};
+  EXPECT_EQ(counts, written);
+
+  // A dataset whose bag has no scans stops with exit 2, naming the bag.
+  TempDir dir;
+  const fs::path none = bags().bag("no-scans", "--no-scan");
+  const fs::path data = test::data_path("fr079");
+  test::write_file(
+      dir / "dataset.yaml",
+      "floorplan: " + (data / "floorplan.png").string() +
+          "\nfloorplan_resolution: 0.05\ngridmap: " + (data / "slam_map.png").string() +
+          "\ngridmap_resolution: 0.05\nlog: " + none.string() + "\n");
+  const test::CommandResult pairs = test::run_floorgrid(
+      "pairs " + test::quoted(dir.path()) + " --out " + test::quoted(dir / "pairs.csv"));
+  EXPECT_EQ(pairs.status, 2) << pairs.out << pairs.err;
+  EXPECT_NE(pairs.err.find("no sensor_msgs/LaserScan topic"), std::string::npos) << pairs.err;
+  EXPECT_FALSE(fs::exists(dir / "pairs.csv"));
+}
+
+}  // namespace
+}  // namespace floorgrid::io
