@@ -59,8 +59,8 @@ constexpr const char* kHelp = R"(Formats (every output is written atomically):
                (--background free, for keepout masks) or unknown. Needs --dataset.)";
 
 /// The pairs: --pairs, else pairs.csv beside the model file; empty when neither.
-ReferencePairs find_pairs(const std::string& pairs_option, const fs::path& model_path,
-                          double unit, std::string& from) {
+ReferencePairs find_pairs(const std::string& pairs_option, const fs::path& model_path, double unit,
+                          std::string& from) {
   if (!pairs_option.empty()) {
     from = pairs_option;
     return io::read_pairs_csv(pairs_option, unit);
@@ -85,8 +85,9 @@ void require_dataset(const std::string& dataset, const std::string& format,
 
 void add_export_command(CLI::App& root) {
   auto* cmd = root.add_subcommand(
-      "export", "Write a model in another tool's terms: QGIS GCPs, a GDAL VRT, an Open-RMF "
-                "traffic-editor layer, or the plan's walls as a nav2 map");
+      "export",
+      "Write a model in another tool's terms: QGIS GCPs, a GDAL VRT, an Open-RMF "
+      "traffic-editor layer, or the plan's walls as a nav2 map");
   cmd->footer(kHelp);
   struct Args {
     std::string model, format, dataset, pairs, source = "plan", background = "free", out;
@@ -108,8 +109,7 @@ void add_export_command(CLI::App& root) {
   cmd->add_option("--max-points", args->max_points,
                   "qgis-points: control points at most (pairs beyond are binned)")
       ->capture_default_str();
-  cmd->add_option("--background", args->background,
-                  "nav2-map: what is not wall, free or unknown")
+  cmd->add_option("--background", args->background, "nav2-map: what is not wall, free or unknown")
       ->check(CLI::IsMember({"free", "unknown"}))
       ->capture_default_str();
   cmd->add_option("--out", args->out, "file to write (nav2-map: the YAML; the PGM goes beside)")
@@ -126,7 +126,8 @@ void add_export_command(CLI::App& root) {
     if (format == "rmf")
       require_dataset(args->dataset, format, "the layer is the gridmap image on the plan's level");
     if (format == "nav2-map")
-      require_dataset(args->dataset, format, "the map takes the gridmap's frame and the plan's walls");
+      require_dataset(args->dataset, format,
+                      "the map takes the gridmap's frame and the plan's walls");
     std::optional<io::LoadedDataset> dataset;
     io::ExportMaps maps;
     if (!args->dataset.empty()) {
@@ -137,8 +138,7 @@ void add_export_command(CLI::App& root) {
     std::string pairs_from;
     const ReferencePairs pairs = find_pairs(args->pairs, model_path, model->unit(), pairs_from);
     const std::optional<GridGeometry> plan_raster =
-        maps.plan_raster ? std::optional<GridGeometry>(maps.plan_raster->geometry)
-                         : std::nullopt;
+        maps.plan_raster ? std::optional<GridGeometry>(maps.plan_raster->geometry) : std::nullopt;
     const fs::path out = args->out;
     if (format == "qgis-points") {
       if (pairs.empty()) {
@@ -151,12 +151,13 @@ void add_export_command(CLI::App& root) {
       options.max_points = args->max_points;
       const io::QgisPoints points = io::qgis_points(*model, pairs, plan_raster, options);
       io::write_file_atomically(out, points.text);
-      fmt::print("wrote {} control points ({} pairs from {}) to {}: source in {}, residual rms "
-                 "{:.4f} m\n",
-                 points.points, points.pairs, pairs_from, out.string(),
-                 points.source_in_pixels ? "plan raster pixels (y negative downwards)"
-                                         : "plan metres (no plan raster)",
-                 points.rms_m);
+      fmt::print(
+          "wrote {} control points ({} pairs from {}) to {}: source in {}, residual rms "
+          "{:.4f} m\n",
+          points.points, points.pairs, pairs_from, out.string(),
+          points.source_in_pixels ? "plan raster pixels (y negative downwards)"
+                                  : "plan metres (no plan raster)",
+          points.rms_m);
       return;
     }
     if (format == "gdal-vrt") {
@@ -171,15 +172,15 @@ void add_export_command(CLI::App& root) {
       const io::GdalVrt vrt = io::gdal_vrt(
           *model, raster, from_plan ? io::VrtSource::plan : io::VrtSource::gridmap, out);
       io::write_file_atomically(out, vrt.text);
-      fmt::print("wrote {} with {} GCPs ({} image -> {} metres){}; reproduce with GDAL's {}: "
-                 "gdalwarp {} {} OUT.tif\n",
-                 out.string(), vrt.gcps.size(), from_plan ? "plan" : "gridmap",
-                 from_plan ? "grid" : "plan",
-                 vrt.not_invertible ? fmt::format(", {} lattice points not invertible",
-                                                  vrt.not_invertible)
-                                    : "",
-                 vrt.exact ? "first-order polynomial (exact)" : "thin-plate spline",
-                 vrt.transformer, out.string());
+      fmt::print(
+          "wrote {} with {} GCPs ({} image -> {} metres){}; reproduce with GDAL's {}: "
+          "gdalwarp {} {} OUT.tif\n",
+          out.string(), vrt.gcps.size(), from_plan ? "plan" : "gridmap",
+          from_plan ? "grid" : "plan",
+          vrt.not_invertible ? fmt::format(", {} lattice points not invertible", vrt.not_invertible)
+                             : "",
+          vrt.exact ? "first-order polynomial (exact)" : "thin-plate spline", vrt.transformer,
+          out.string());
       return;
     }
     if (format == "rmf") {
@@ -192,19 +193,19 @@ void add_export_command(CLI::App& root) {
         points_from = "the pairs of " + pairs_from;
       }
       std::error_code error;
-      fs::path filename = fs::relative(fs::absolute(maps.gridmap->image),
-                                       fs::absolute(out).parent_path(), error);
+      fs::path filename =
+          fs::relative(fs::absolute(maps.gridmap->image), fs::absolute(out).parent_path(), error);
       if (error || filename.empty())
         filename = fs::absolute(maps.gridmap->image);
       const io::RmfLayer layer =
           io::rmf_layer(*model, points, *maps.gridmap, plan_raster, filename.generic_string());
       io::write_file_atomically(out, layer.text);
       const io::RmfLayerTransform& t = layer.transform;
-      fmt::print("wrote {}: scale {:.6g} m/pixel, translation ({:.4f}, {:.4f}) m, yaw {:.6f} "
-                 "rad\n  similarity: {}{}\n  level frame: {}\n",
-                 out.string(), t.scale, t.translation_x, t.translation_y, t.yaw,
-                 layer.similarity.source,
-                 layer.similarity.exact ? "" : " (over " + points_from + ")", layer.level_frame);
+      fmt::print(
+          "wrote {}: scale {:.6g} m/pixel, translation ({:.4f}, {:.4f}) m, yaw {:.6f} "
+          "rad\n  similarity: {}{}\n  level frame: {}\n",
+          out.string(), t.scale, t.translation_x, t.translation_y, t.yaw, layer.similarity.source,
+          layer.similarity.exact ? "" : " (over " + points_from + ")", layer.level_frame);
       return;
     }
     // nav2-map
@@ -215,9 +216,9 @@ void add_export_command(CLI::App& root) {
         maps.plan_vector ? io::plan_walls_in_grid(*model, *maps.plan_vector, geometry, options)
                          : io::plan_walls_in_grid(*model, *maps.plan_grid, geometry, options);
     const fs::path image = io::write_nav2_map(walls, out);
-    fmt::print("wrote {} and {}: {} x {} cells at {} m, {} wall cells, the rest {}\n",
-               out.string(), image.string(), geometry.width, geometry.height,
-               geometry.resolution, walls.counts().occupied, args->background);
+    fmt::print("wrote {} and {}: {} x {} cells at {} m, {} wall cells, the rest {}\n", out.string(),
+               image.string(), geometry.width, geometry.height, geometry.resolution,
+               walls.counts().occupied, args->background);
   });
 }
 

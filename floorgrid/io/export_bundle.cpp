@@ -56,8 +56,7 @@ ExportFiles write_exports(const PointMapping& model, const ReferencePairs& pairs
   if (maps.gridmap) {
     attempt("gdal-vrt", [&] {
       const auto path = folder / "gridmap.vrt";
-      write_file_atomically(path,
-                            gdal_vrt(model, *maps.gridmap, VrtSource::gridmap, path).text);
+      write_file_atomically(path, gdal_vrt(model, *maps.gridmap, VrtSource::gridmap, path).text);
       out.files.emplace_back("gridmap.vrt");
     });
     if (!pairs.empty()) {

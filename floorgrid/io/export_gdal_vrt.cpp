@@ -33,10 +33,18 @@ RasterBands probe_bands(const std::filesystem::path& image) {
     const int colour_type = static_cast<unsigned char>(head[25]);
     bands.data_type = depth == 16 ? "UInt16" : "Byte";
     switch (colour_type) {
-      case 2: bands.colours = {"Red", "Green", "Blue"}; break;
-      case 4: bands.colours = {"Gray", "Alpha"}; break;
-      case 6: bands.colours = {"Red", "Green", "Blue", "Alpha"}; break;
-      default: bands.colours = {"Gray"}; break;  // grey, or palette indices
+      case 2:
+        bands.colours = {"Red", "Green", "Blue"};
+        break;
+      case 4:
+        bands.colours = {"Gray", "Alpha"};
+        break;
+      case 6:
+        bands.colours = {"Red", "Green", "Blue", "Alpha"};
+        break;
+      default:
+        bands.colours = {"Gray"};
+        break;  // grey, or palette indices
     }
     bands.count = static_cast<int>(bands.colours.size());
     return bands;
@@ -46,8 +54,8 @@ RasterBands probe_bands(const std::filesystem::path& image) {
     std::size_t at = 2;
     long numbers[3] = {0, 0, 0};
     for (long& number : numbers) {
-      while (at < head.size() && (std::isspace(static_cast<unsigned char>(head[at])) ||
-                                  head[at] == '#')) {
+      while (at < head.size() &&
+             (std::isspace(static_cast<unsigned char>(head[at])) || head[at] == '#')) {
         if (head[at] == '#') {
           while (at < head.size() && head[at] != '\n')
             ++at;
@@ -62,9 +70,10 @@ RasterBands probe_bands(const std::filesystem::path& image) {
     return bands;
   }
   if (head.size() >= 2 && head[0] == 'P' && head[1] == '2') {
-    throw InputError("an ASCII PGM (P2), which GDAL does not read: convert it to binary PGM "
-                     "(P5) or PNG",
-                     image.string(), 0, "image");
+    throw InputError(
+        "an ASCII PGM (P2), which GDAL does not read: convert it to binary PGM "
+        "(P5) or PNG",
+        image.string(), 0, "image");
   }
   throw InputError("not a PNG or binary PGM image", image.string(), 0, "image");
 }
@@ -73,12 +82,23 @@ std::string xml_escaped(const std::string& text) {
   std::string out;
   for (const char c : text) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&apos;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&apos;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -150,8 +170,8 @@ GdalVrt gdal_vrt(const PointMapping& model, const MapRaster& raster, VrtSource s
   const std::string to = source == VrtSource::plan ? "grid" : "plan";
   const std::string from = source == VrtSource::plan ? "plan" : "gridmap";
   const auto [filename, relative] = source_filename(raster.image, vrt_path);
-  std::string text = fmt::format("<VRTDataset rasterXSize=\"{}\" rasterYSize=\"{}\">\n", g.width,
-                                 g.height);
+  std::string text =
+      fmt::format("<VRTDataset rasterXSize=\"{}\" rasterYSize=\"{}\">\n", g.width, g.height);
   text += fmt::format(
       "  <!-- floorgrid export gdal-vrt: the {} image, GCPs from GDAL pixel/line (0,0 = the "
       "top-left corner of the top-left pixel) to {} metres through the {} model. Reproduced by "
@@ -161,8 +181,8 @@ GdalVrt gdal_vrt(const PointMapping& model, const MapRaster& raster, VrtSource s
   text += "  <Metadata>\n";
   text += fmt::format("    <MDI key=\"FLOORGRID_MODEL\">{}</MDI>\n",
                       xml_escaped(exported_model(model).name()));
-  text += fmt::format("    <MDI key=\"FLOORGRID_FRAMES\">{} image -&gt; {} metres</MDI>\n", from,
-                      to);
+  text +=
+      fmt::format("    <MDI key=\"FLOORGRID_FRAMES\">{} image -&gt; {} metres</MDI>\n", from, to);
   text += fmt::format("    <MDI key=\"FLOORGRID_GDAL_TRANSFORMER\">{}</MDI>\n", vrt.transformer);
   text += "  </Metadata>\n";
   text += "  <GCPList Projection=\"\">\n";

@@ -35,8 +35,8 @@ struct GroundControlPoint {
 struct GdalVrt {
   std::string text;                      ///< the VRT's XML
   std::vector<GroundControlPoint> gcps;  ///< its GCPs
-  bool exact = false;           ///< the model is affine: `-order 1` reproduces it exactly
-  std::string transformer;      ///< the gdalwarp/gdaltransform option reproducing the model
+  bool exact = false;                    ///< the model is affine: `-order 1` reproduces it exactly
+  std::string transformer;         ///< the gdalwarp/gdaltransform option reproducing the model
   std::size_t not_invertible = 0;  ///< lattice points left out (the inverse does not exist)
 };
 

@@ -12,8 +12,7 @@ ExportMaps export_maps(const LoadedDataset& d) {
   if (d.plan) {
     maps.plan_vector = *d.plan;
   } else {
-    LoadedMap plan =
-        read_map(m.floorplan, m.floorplan_resolution, m.floorplan_origin, "floorplan");
+    LoadedMap plan = read_map(m.floorplan, m.floorplan_resolution, m.floorplan_origin, "floorplan");
     maps.plan_raster = MapRaster{plan.image_path, plan.grid.geometry()};
     maps.plan_grid = std::move(plan.grid);
   }

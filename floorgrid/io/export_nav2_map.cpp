@@ -14,8 +14,8 @@ namespace {
 
 void check(const Nav2MapOptions& options) {
   if (!(options.samples_per_cell >= 1.0 && options.samples_per_cell <= 100.0)) {
-    throw InputError(fmt::format("must be in [1, 100] (got {})", options.samples_per_cell), {},
-                     0, "samples_per_cell");
+    throw InputError(fmt::format("must be in [1, 100] (got {})", options.samples_per_cell), {}, 0,
+                     "samples_per_cell");
   }
 }
 
@@ -75,8 +75,7 @@ OccupancyGrid plan_walls_in_grid(const PointMapping& model, const OccupancyGrid&
         continue;
       for (int j = 0; j < k; ++j) {
         for (int i = 0; i < k; ++i) {
-          samples.push_back(
-              g.from_cell_coordinates({ix + (i + 0.5) / k, iy + (j + 0.5) / k}));
+          samples.push_back(g.from_cell_coordinates({ix + (i + 0.5) / k, iy + (j + 0.5) / k}));
         }
       }
     }

@@ -2,9 +2,9 @@
 
 #include <filesystem>
 
+#include "floorgrid/mapping/point_mapping.hpp"
 #include "floorgrid/maps/occupancy_grid.hpp"
 #include "floorgrid/maps/vector_floorplan.hpp"
-#include "floorgrid/mapping/point_mapping.hpp"
 
 namespace floorgrid::io {
 

@@ -5,8 +5,8 @@
 #include <string>
 
 #include "floorgrid/geometry/reference_pairs.hpp"
-#include "floorgrid/maps/occupancy_grid.hpp"
 #include "floorgrid/mapping/point_mapping.hpp"
+#include "floorgrid/maps/occupancy_grid.hpp"
 
 namespace floorgrid::io {
 
@@ -19,11 +19,11 @@ struct QgisPointsOptions {
 
 /// What a .points file holds.
 struct QgisPoints {
-  std::string text;          ///< the file's bytes
-  std::size_t points = 0;    ///< control points written
-  std::size_t pairs = 0;     ///< pairs given
+  std::string text;               ///< the file's bytes
+  std::size_t points = 0;         ///< control points written
+  std::size_t pairs = 0;          ///< pairs given
   bool source_in_pixels = false;  ///< sources are plan raster pixels, not plan metres
-  double rms_m = 0.0;        ///< rms of the residuals written, metres
+  double rms_m = 0.0;             ///< rms of the residuals written, metres
 };
 
 /// A QGIS Georeferencer `.points` file (the format QGIS's GCP list saves and loads): a first

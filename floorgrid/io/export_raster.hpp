@@ -31,10 +31,10 @@ Eigen::Matrix3d T_frame_image(const GridGeometry& geometry);
 /// The maps an export may draw on beside the model, in the model's frames: the gridmap image,
 /// and the plan as a raster (a map YAML or bare image) or as DXF geometry.
 struct ExportMaps {
-  std::optional<MapRaster> gridmap;           ///< the robot's map image
-  std::optional<MapRaster> plan_raster;       ///< a raster plan's image (none for DXF)
-  std::optional<OccupancyGrid> plan_grid;     ///< a raster plan's cells (walls = occupied)
-  std::optional<VectorFloorplan> plan_vector; ///< a DXF plan in plan metres (as the model's)
+  std::optional<MapRaster> gridmap;            ///< the robot's map image
+  std::optional<MapRaster> plan_raster;        ///< a raster plan's image (none for DXF)
+  std::optional<OccupancyGrid> plan_grid;      ///< a raster plan's cells (walls = occupied)
+  std::optional<VectorFloorplan> plan_vector;  ///< a DXF plan in plan metres (as the model's)
 };
 
 }  // namespace floorgrid::io

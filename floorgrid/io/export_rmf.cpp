@@ -58,30 +58,32 @@ RmfLayer rmf_layer(const PointMapping& model,
   t.yaw = std::atan2(A(0, 1), A(0, 0));
   t.translation_x = T_level_layer(0, 2);
   t.translation_y = T_level_layer(1, 2);
-  layer.level_frame =
-      plan_raster ? fmt::format("the plan raster's pixels x {} m (its resolution), y down; set "
+  layer.level_frame = plan_raster
+                          ? fmt::format(
+                                "the plan raster's pixels x {} m (its resolution), y down; set "
                                 "the level's scale to {} m per pixel",
                                 plan_raster->resolution, plan_raster->resolution)
-                  : "the DXF plan's metres with y flipped (level metres = (x, -y))";
+                          : "the DXF plan's metres with y flipped (level metres = (x, -y))";
   const ModelSimilarity& s = layer.similarity;
   std::string text;
   text += "# floorgrid export rmf: the robot's map as an Open-RMF traffic-editor layer.\n";
   text += "# Paste under the plan's level in the building YAML (levels: <level>: layers:).\n";
   text += fmt::format("# Level frame: {}.\n", layer.level_frame);
-  text += fmt::format("# From the {} model's similarity: {}.\n",
-                      exported_model(model).name(), s.source);
-  text += fmt::format("# Similarity plan -> grid: scale {:.6f}, yaw {:.6f} rad, rms residual "
-                      "{:.4f} m.\n",
-                      s.scale, s.yaw, s.rms_m);
+  text += fmt::format("# From the {} model's similarity: {}.\n", exported_model(model).name(),
+                      s.source);
+  text += fmt::format(
+      "# Similarity plan -> grid: scale {:.6f}, yaw {:.6f} rad, rms residual "
+      "{:.4f} m.\n",
+      s.scale, s.yaw, s.rms_m);
   text += "layers:\n";
   text += fmt::format("  {}:\n", options.name);
   text += fmt::format("    filename: {}\n", yaml_string(filename));
   text += "    visible: true\n";
   text += fmt::format("    color: [{}, {}, {}, {}]\n", options.color[0], options.color[1],
                       options.color[2], options.color[3]);
-  text += fmt::format(
-      "    transform: {{scale: {}, translation_x: {}, translation_y: {}, yaw: {}}}\n", t.scale,
-      t.translation_x, t.translation_y, t.yaw);
+  text +=
+      fmt::format("    transform: {{scale: {}, translation_x: {}, translation_y: {}, yaw: {}}}\n",
+                  t.scale, t.translation_x, t.translation_y, t.yaw);
   layer.text = std::move(text);
   return layer;
 }

@@ -13,7 +13,7 @@ namespace floorgrid::io {
 
 /// How the robot map layer is drawn in the traffic-editor.
 struct RmfLayerOptions {
-  std::string name = "robot_map";                    ///< the layer's key
+  std::string name = "robot_map";                      ///< the layer's key
   std::array<double, 4> color = {0.0, 0.0, 1.0, 0.5};  ///< RGBA, 0..1 (traffic-editor's form)
 };
 
@@ -42,7 +42,8 @@ struct RmfLayer {
 /// metres = plan pixel x resolution, y down), else the DXF's metres with y flipped (level
 /// metres = (x, -y)). `filename` is written as the layer's file. InputError when the model
 /// mirrors the plan (a layer transform cannot mirror).
-RmfLayer rmf_layer(const PointMapping& model, const Eigen::Ref<const Eigen::Matrix2Xd>& points_in_plan,
+RmfLayer rmf_layer(const PointMapping& model,
+                   const Eigen::Ref<const Eigen::Matrix2Xd>& points_in_plan,
                    const MapRaster& gridmap, const std::optional<GridGeometry>& plan_raster,
                    const std::string& filename, const RmfLayerOptions& options = {});
 

@@ -17,7 +17,7 @@ bool model_is_affine(const PointMapping& model);
 /// translation can carry).
 struct ModelSimilarity {
   Eigen::Matrix3d T_grid_plan = Eigen::Matrix3d::Identity();  ///< rotation, scale, translation
-  double scale = 1.0;      ///< grid metres per plan metre
+  double scale = 1.0;                                         ///< grid metres per plan metre
   double yaw = 0.0;        ///< radians, rotation from the plan's axes to the grid's
   bool reflected = false;  ///< the plan is mirrored (no similarity format can carry that)
   bool exact = false;      ///< the model is this similarity (gt, gt-rigid)

@@ -1,4 +1,5 @@
 // `floorgrid export` end to end on a small hand-made dataset (no log: maps only).
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <sstream>
@@ -24,7 +25,8 @@ const test::KnownSimilarity kTruth{1.0, 0.25, {3.0, -2.0}};
 /// The room through kTruth.
 VectorFloorplan room_in_grid() {
   VectorFloorplan grid;
-  for (const Segment& s : test::asymmetric_room().segments())
+  const VectorFloorplan room = test::asymmetric_room();
+  for (const Segment& s : room.segments())
     grid.add_segment(kTruth(s.a), kTruth(s.b), "WALLS");
   return grid;
 }
@@ -106,7 +108,7 @@ TEST(ExportCommand, VrtAgreesWithFloorgridMapThroughGdaltransform) {
   ASSERT_EQ(run_floorgrid(export_args(dir, "gdal-vrt", "plan.vrt")).status, 0);
   const io::LoadedMap plan = io::read_map_yaml(dir / "plan.yaml");
   const GridGeometry& g = plan.grid.geometry();
-  for (const Eigen::Vector2d pixel : {Eigen::Vector2d(10.5, 20.25), Eigen::Vector2d(200, 3)}) {
+  for (const Eigen::Vector2d& pixel : {Eigen::Vector2d(10.5, 20.25), Eigen::Vector2d(200, 3)}) {
     write_file(dir / "in.txt", fmt::format("{} {}\n", pixel.x(), pixel.y()));
     const auto gdal = test::run_command("gdaltransform -order 1 " + quoted(dir / "plan.vrt") +
                                         " < " + quoted(dir / "in.txt"));
@@ -149,8 +151,8 @@ TEST(ExportCommand, BadInputIsExitTwoNamingWhatIsMissing) {
   make_dataset(dir, false);
   const std::string model = " --model " + quoted(dir / "al" / "model.json");
   for (const char* format : {"gdal-vrt", "rmf", "nav2-map"}) {
-    const auto r = run_floorgrid("export" + model + " --format " + format + " --out " +
-                                 quoted(dir / "x.out"));
+    const auto r =
+        run_floorgrid("export" + model + " --format " + format + " --out " + quoted(dir / "x.out"));
     EXPECT_EQ(r.status, 2) << format;
     EXPECT_NE(r.err.find("--dataset"), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(dir / "x.out"));
@@ -164,14 +166,14 @@ TEST(ExportCommand, BadInputIsExitTwoNamingWhatIsMissing) {
   const auto bad_format =
       run_floorgrid("export" + model + " --format kml --out " + quoted(dir / "x.kml"));
   EXPECT_EQ(bad_format.status, 2);
-  const auto no_model = run_floorgrid("export --model " + quoted(dir / "none.json") +
-                                      " --format rmf --dataset " + quoted(dir.path()) +
-                                      " --out " + quoted(dir / "x.yaml"));
+  const auto no_model =
+      run_floorgrid("export --model " + quoted(dir / "none.json") + " --format rmf --dataset " +
+                    quoted(dir.path()) + " --out " + quoted(dir / "x.yaml"));
   EXPECT_EQ(no_model.status, 2);
   EXPECT_NE(no_model.err.find("none.json"), std::string::npos) << no_model.err;
-  const auto bad_pairs = run_floorgrid("export" + model + " --format qgis-points --pairs " +
-                                       quoted(dir / "missing.csv") + " --out " +
-                                       quoted(dir / "x.points"));
+  const auto bad_pairs =
+      run_floorgrid("export" + model + " --format qgis-points --pairs " +
+                    quoted(dir / "missing.csv") + " --out " + quoted(dir / "x.points"));
   EXPECT_EQ(bad_pairs.status, 2);
   EXPECT_NE(bad_pairs.err.find("missing.csv"), std::string::npos) << bad_pairs.err;
 }

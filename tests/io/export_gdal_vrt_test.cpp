@@ -2,6 +2,7 @@
 // (gdaltransform and gdalinfo from Debian's gdal-bin, a test tool only).
 #include "floorgrid/io/export_gdal_vrt.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <fstream>

@@ -80,9 +80,9 @@ TEST(ExportNav2Map, WrittenAsATrinaryMapThatReadsBack) {
   const auto image = io::write_nav2_map(walls, dir / "walls.yaml");
   EXPECT_EQ(image.filename(), "walls.pgm");
   const std::string yaml = test::read_file(dir / "walls.yaml");
-  for (const char* line : {"image: walls.pgm\n", "mode: trinary\n", "resolution: 0.1\n",
-                           "origin: [-5, -5, 0]\n", "negate: 0\n", "occupied_thresh: 0.65\n",
-                           "free_thresh: 0.25\n"}) {
+  for (const char* line :
+       {"image: walls.pgm\n", "mode: trinary\n", "resolution: 0.1\n", "origin: [-5, -5, 0]\n",
+        "negate: 0\n", "occupied_thresh: 0.65\n", "free_thresh: 0.25\n"}) {
     EXPECT_NE(yaml.find(line), std::string::npos) << line << " in\n" << yaml;
   }
   const io::LoadedMap back = io::read_map_yaml(dir / "walls.yaml");

@@ -47,8 +47,7 @@ TEST(ExportQgisPoints, RowsOfAKnownSimilarityInRasterPixels) {
   raster.resolution = 0.1;
   raster.origin = {-1.0, -2.0, 0.0};
   const io::QgisPoints points = io::qgis_points(*model, pairs, raster);
-  EXPECT_EQ(points.text.rfind("#CRS: \nmapX,mapY,sourceX,sourceY,enable,dX,dY,residual\n", 0),
-            0u)
+  EXPECT_EQ(points.text.rfind("#CRS: \nmapX,mapY,sourceX,sourceY,enable,dX,dY,residual\n", 0), 0u)
       << points.text;
   EXPECT_TRUE(points.source_in_pixels);
   ASSERT_EQ(points.points, 2u);

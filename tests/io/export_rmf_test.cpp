@@ -58,7 +58,7 @@ TEST(ExportRmf, LayerTransformOfAKnownSimilarityByHand) {
       << layer.text;
   EXPECT_NE(layer.text.find("transform: {scale: 0.025"), std::string::npos) << layer.text;
   // Any layer pixel lands where the chain grid -> plan -> plan pixel puts it.
-  for (const Eigen::Vector2d pixel : {Eigen::Vector2d(13.5, 250.25), Eigen::Vector2d(400, 0)}) {
+  for (const Eigen::Vector2d& pixel : {Eigen::Vector2d(13.5, 250.25), Eigen::Vector2d(400, 0)}) {
     const Eigen::Vector2d grid(-5.0 + 0.05 * pixel.x(), -3.0 + 0.05 * (300 - pixel.y()));
     const Eigen::Vector2d plan = rotation_2d(-M_PI / 2) * (grid - truth.t) / 2.0;
     const Eigen::Vector2d level(plan.x(), 0.1 * (100 - plan.y() / 0.1));
