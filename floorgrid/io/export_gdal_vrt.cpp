@@ -132,8 +132,8 @@ std::vector<Eigen::Vector2d> lattice(int width, int height, int n) {
 
 GdalVrt gdal_vrt(const PointMapping& model, const MapRaster& raster, VrtSource source,
                  const std::filesystem::path& vrt_path, const GdalVrtOptions& options) {
-  if (options.lattice_points < 3) {
-    throw InputError(fmt::format("must be at least 3 (got {})", options.lattice_points), {}, 0,
+  if (options.lattice_points < 3 || options.lattice_points > 129) {
+    throw InputError(fmt::format("must be in [3, 129] (got {})", options.lattice_points), {}, 0,
                      "lattice_points");
   }
   const RasterBands bands = probe_bands(raster.image);
@@ -175,9 +175,12 @@ GdalVrt gdal_vrt(const PointMapping& model, const MapRaster& raster, VrtSource s
   text += fmt::format(
       "  <!-- floorgrid export gdal-vrt: the {} image, GCPs from GDAL pixel/line (0,0 = the "
       "top-left corner of the top-left pixel) to {} metres through the {} model. Reproduced by "
-      "GDAL's {} transformer: gdalwarp {} {} out.tif -->\n",
+      "GDAL's {} transformer: gdalwarp {} {} out.tif{} -->\n",
       from, to, exported_model(model).name(), vrt.exact ? "polynomial" : "thin-plate spline",
-      vrt.transformer, xml_escaped(vrt_path.filename().string()));
+      vrt.transformer, xml_escaped(vrt_path.filename().string()),
+      vrt.exact ? " (exact)"
+                : ". The spline follows smooth models (tps, gp, gpgt) within about 1 cm and "
+                  "smooths the kinks of piecewise ones (ct, dt, lc) between the GCPs");
   text += "  <Metadata>\n";
   text += fmt::format("    <MDI key=\"FLOORGRID_MODEL\">{}</MDI>\n",
                       xml_escaped(exported_model(model).name()));
