@@ -1,5 +1,6 @@
 // `floorgrid align DATASET --out DIR`: pairs, every model fitted and judged, overlays, metrics.
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
 #include <chrono>
 #include <cmath>
@@ -13,8 +14,41 @@
 #include "floorgrid/io/alignment_writer.hpp"
 #include "floorgrid/io/atomic_file.hpp"
 #include "floorgrid/io/dataset_loader.hpp"
+#include "floorgrid/io/export_bundle.hpp"
+#include "floorgrid/io/export_inputs.hpp"
 
 namespace floorgrid::app {
+
+namespace {
+
+/// The chosen model in other tools' terms, into DIR/exports (after the alignment was accepted:
+/// a rejected one is not worth exporting). A failure here costs the exports, not the job.
+void write_align_exports(const Alignment& a, const io::LoadedDataset& d,
+                         const std::filesystem::path& out) {
+  const PointMapping* chosen = nullptr;
+  for (const ModelAlignment& m : a.models) {
+    if (m.report.name == "auto" && m.report.model)
+      chosen = m.report.model.get();
+  }
+  if (!chosen)
+    return;
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    const io::ExportFiles files =
+        io::write_exports(*chosen, a.localization.pairs, io::export_maps(d), out / "exports");
+    for (const std::string& skipped : files.skipped)
+      spdlog::info("export skipped: {}", skipped);
+    fmt::print(
+        "exports     {} files in {} ({:.2f} s; `floorgrid export --help` says what "
+        "each is)\n",
+        files.files.size(), (out / "exports").string(),
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  } catch (const InputError& e) {
+    spdlog::warn("exports not written: {}", e.what());
+  }
+}
+
+}  // namespace
 
 void run_align(const std::string& dataset, const std::string& out, const JobOptions& options) {
   const io::OutputFolder out_folder(out);
@@ -69,6 +103,7 @@ void run_align(const std::string& dataset, const std::string& out, const JobOpti
   // made no pairs is a failure, not a result.
   require_pairs(a.localization, d);
   require_plan_match(a.plan_match, d, options.align.localization.plan_location);
+  write_align_exports(a, d, out);
 }
 
 void add_align_command(CLI::App& root) {

@@ -21,5 +21,7 @@ void add_align_command(CLI::App& root);
 void add_demo_command(CLI::App& root);
 /// `floorgrid config`.
 void add_config_command(CLI::App& root);
+/// `floorgrid export`.
+void add_export_command(CLI::App& root);
 
 }  // namespace floorgrid::app

@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
   floorgrid::app::add_align_command(root);
   floorgrid::app::add_demo_command(root);
   floorgrid::app::add_config_command(root);
+  floorgrid::app::add_export_command(root);
 
   try {
     root.parse(argc, argv);
