@@ -286,6 +286,11 @@ std::optional<BagContents> contents_from_summary(BinaryFile& file,
     for (const auto& [channel, count] : statistics->channel_message_counts) {
       const auto first = channel_time(file, chunks, channel, true, buffer);
       const auto last = channel_time(file, chunks, channel, false, buffer);
+      if (count > 0 && (!first || !last)) {
+        warnings.push_back("the summary's chunk indexes do not tell the times of channel " +
+                           std::to_string(channel) + " (unchunked file?): read through");
+        return std::nullopt;
+      }
       if (!topics.set_count(channel, count, first.value_or(0), last.value_or(0))) {
         warnings.push_back("the summary's statistics count messages on channel " +
                            std::to_string(channel) + ", which it does not define: read through");

@@ -3,7 +3,12 @@
 namespace floorgrid::io::mcap {
 
 void TopicTable::add_schema(const Schema& schema) {
-  schema_names_.emplace(schema.id, schema.name);
+  if (!schema_names_.emplace(schema.id, schema.name).second)
+    return;
+  // A channel may come before its schema (in the summary of some writers).
+  for (std::size_t i = 0; i < topics_.size(); ++i)
+    if (schema_ids_[i] == schema.id && topics_[i].type.empty())
+      topics_[i].type = schema.name;
 }
 
 void TopicTable::add_channel(const Channel& channel) {
@@ -16,6 +21,8 @@ void TopicTable::add_channel(const Channel& channel) {
     topic.encoding = MessageEncoding::cdr;
   else if (channel.message_encoding == "ros1")
     topic.encoding = MessageEncoding::ros1;
+  if (const auto schema = schema_names_.find(channel.schema_id); schema != schema_names_.end())
+    topic.type = schema->second;
   topics_.push_back(topic);
   schema_ids_.push_back(channel.schema_id);
   encodings_.push_back(channel.message_encoding);
@@ -69,8 +76,6 @@ BagContents TopicTable::contents(std::uint64_t file_bytes) const {
   contents.topics = topics_;
   for (std::size_t i = 0; i < topics_.size(); ++i) {
     BagTopic& topic = contents.topics[i];
-    if (const auto schema = schema_names_.find(schema_ids_[i]); schema != schema_names_.end())
-      topic.type = schema->second;
     if (encodings_[i] != "cdr" && encodings_[i] != "ros1")
       contents.warnings.push_back("topic " + topic.topic + " has message encoding '" +
                                   encodings_[i] +
