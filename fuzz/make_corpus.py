@@ -5,8 +5,8 @@ files in ../shared/data when it is there, and the model files of tests/fixtures/
 
 Usage: fuzz/make_corpus.py OUT_DIR [DATA_DIR]
 Writes OUT_DIR/<target>/ for dxf, image, map_yaml, carmen, pairs_csv, points_csv, model_json,
-dataset_yaml, ros_messages, ros1_bag. Every seed is at most MAX_SEED bytes (the fuzzers run with
--max_len of that size).
+dataset_yaml, ros_messages, ros1_bag, mcap. Every seed is at most MAX_SEED bytes (the
+fuzzers run with -max_len of that size).
 """
 import gzip
 import os
@@ -296,6 +296,54 @@ def ros_message_seeds(out: Path) -> None:
             selector = bytes([(index << 1) | int(cdr)])
             put(out, "ros_messages", f"{name}-{'cdr' if cdr else 'ros1'}.bin",
                 selector + ros_payload(cdr, fields))
+# ---- MCAP: small hand-made files (records as the MCAP spec lays them out) ----
+
+def mcap_record(opcode: int, content: bytes) -> bytes:
+    return struct.pack("<BQ", opcode, len(content)) + content
+
+
+def mcap_string(s: str) -> bytes:
+    return struct.pack("<I", len(s)) + s.encode()
+
+
+def mcap_file(chunked: bool, summary: bool, compression_name: str = "") -> bytes:
+    magic = b"\x89MCAP0\r\n"
+    schema = mcap_record(3, struct.pack("<H", 1) + mcap_string("sensor_msgs/msg/LaserScan") +
+                         mcap_string("ros2msg") + struct.pack("<I", 3) + b"a b")
+    metadata = mcap_string("k") + mcap_string("v")
+    channel = mcap_record(4, struct.pack("<HH", 1, 1) + mcap_string("/scan") +
+                          mcap_string("cdr") + struct.pack("<I", len(metadata)) + metadata)
+    messages = b"".join(mcap_record(5, struct.pack("<HIQQ", 1, i, 1000 + i, 1000 + i) +
+                                    b"\x00\x01\x00\x00" + bytes(range(i * 4)))
+                        for i in range(3))
+    head = magic + mcap_record(1, mcap_string("ros2") + mcap_string("fuzz seed"))
+    if chunked:
+        inner = schema + channel + messages
+        chunk = mcap_record(6, struct.pack("<QQQI", 1000, 1002, len(inner), zlib.crc32(inner)) +
+                            mcap_string(compression_name) + struct.pack("<Q", len(inner)) + inner)
+        body = chunk
+    else:
+        body = schema + channel + messages
+    data = head + body + mcap_record(15, struct.pack("<I", 0))
+    summary_start = 0
+    if summary:
+        summary_start = len(data)
+        counts = struct.pack("<HQ", 1, 3)
+        statistics = mcap_record(11, struct.pack("<QHIIIIQQ", 3, 1, 1, 0, 0, 1 if chunked else 0,
+                                                 1000, 1002) +
+                                 struct.pack("<I", len(counts)) + counts)
+        data += schema + channel + statistics
+    return data + mcap_record(2, struct.pack("<QQI", summary_start, 0, 0)) + magic
+
+
+def mcap_seeds(out: Path) -> None:
+    put(out, "mcap", "chunked_summary.mcap", mcap_file(True, True))
+    put(out, "mcap", "chunked.mcap", mcap_file(True, False))
+    put(out, "mcap", "unchunked_summary.mcap", mcap_file(False, True))
+    put(out, "mcap", "unchunked.mcap", mcap_file(False, False))
+    put(out, "mcap", "unknown_compression.mcap", mcap_file(True, False, "brotli"))
+    # A real writer's file (tests/bags/write_mcap.mjs, lz4 chunks), cut to MAX_SEED.
+    put(out, "mcap", "fr079_small_head.mcap", (ROOT / "tests/bags/fr079_small.mcap").read_bytes())
 
 
 def main() -> None:
@@ -323,6 +371,7 @@ def main() -> None:
     put(out, "ros1_bag", "tiny-unindexed.bag", ros1_bag("none", index=False))
     put(out, "ros1_bag", "fr079_5scans_lz4.bag",
         (ROOT / "tests" / "bags" / "fr079_5scans_lz4.bag").read_bytes())
+    mcap_seeds(out)
     for model in sorted((ROOT / "tests" / "fixtures" / "models").glob("*.json")):
         put(out, "model_json", model.name, compact_model(model))
     if data.is_dir():

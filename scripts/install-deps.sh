@@ -22,6 +22,9 @@ packages=(
   # tools that check the exported VRT (test tools only, never linked)
   python3-rosbag python3-roslz4 python3-sensor-msgs python3-nav-msgs python3-tf2-msgs
   python3-geometry-msgs gdal-bin
+  # the independent MCAP writer (tests/bags/write_mcap.mjs) runs on Node; its npm packages are
+  # pinned by tests/bags/package-lock.json and installed below (this image's nodejs brings npm)
+  nodejs
   # make fuzz: libFuzzer from clang-16 (clang-14 cannot compile libstdc++ 12's <ranges>)
   clang-16 libclang-rt-16-dev
 )
@@ -33,8 +36,22 @@ for p in "${packages[@]}"; do
   fi
 done
 
+# npm packages of the test bag writers, installed once from the lock file: later runs find
+# tests/bags/node_modules and need no network. A failure only skips the MCAP writer's tests.
+install_bag_writers() {
+  local bags
+  bags="$(cd "$(dirname "$0")/.." && pwd)/tests/bags"
+  if [ -d "$bags/node_modules/@mcap/core" ] || ! command -v npm >/dev/null; then
+    return 0
+  fi
+  echo "install-deps: npm ci in tests/bags (the MCAP test writer)"
+  npm ci --prefix "$bags" --no-audit --no-fund --loglevel=error ||
+    echo "install-deps: npm ci failed: the MCAP writer tests will be skipped" >&2
+}
+
 if [ ${#missing[@]} -eq 0 ]; then
   echo "install-deps: all ${#packages[@]} packages present"
+  install_bag_writers
   exit 0
 fi
 
@@ -48,3 +65,4 @@ echo "install-deps: installing ${missing[*]}"
 export DEBIAN_FRONTEND=noninteractive
 apt-get update -qq
 apt-get install -y -qq --no-install-recommends "${missing[@]}"
+install_bag_writers
