@@ -1,12 +1,11 @@
 #include "floorgrid/io/bag_file.hpp"
 
-#include <yaml-cpp/yaml.h>
-
 #include <array>
 #include <cstring>
 #include <fstream>
 
 #include "floorgrid/core/error.hpp"
+#include "floorgrid/io/rosbag2_folder.hpp"
 
 namespace floorgrid::io {
 namespace {
@@ -14,26 +13,6 @@ namespace {
 constexpr std::string_view kRos1Magic = "#ROSBAG V2.0\n";
 constexpr std::string_view kMcapMagic = "\x89MCAP0\r\n";
 constexpr std::string_view kSqliteMagic{"SQLite format 3\0", 16};
-
-/// The storage a rosbag2 folder's metadata.yaml names, or nullopt when it has none.
-std::optional<BagFormat> rosbag2_folder_format(const std::filesystem::path& folder) {
-  const std::filesystem::path metadata = folder / "metadata.yaml";
-  if (!std::filesystem::is_regular_file(metadata))
-    return std::nullopt;
-  std::string storage;
-  try {
-    const YAML::Node root = YAML::LoadFile(metadata.string());
-    storage = root["rosbag2_bagfile_information"]["storage_identifier"].as<std::string>("");
-  } catch (const YAML::Exception& e) {
-    throw InputError("not a rosbag2 metadata file: " + std::string(e.what()), metadata.string());
-  }
-  if (storage == "sqlite3")
-    return BagFormat::rosbag2_sqlite;
-  if (storage == "mcap")
-    return BagFormat::mcap;
-  throw InputError("rosbag2 storage '" + storage + "' is not supported (sqlite3 or mcap)",
-                   metadata.string(), 0, "storage_identifier");
-}
 
 BagFormat require_format(const std::filesystem::path& path) {
   if (const std::optional<BagFormat> format = detect_bag_format(path))

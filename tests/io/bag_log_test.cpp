@@ -12,6 +12,7 @@
 #include "floorgrid/io/carmen_log.hpp"
 #include "floorgrid/io/robot_log_reader.hpp"
 #include "tests/io/ros1_bag_test_support.hpp"
+#include "tests/support/bag_writers.hpp"
 #include "tests/support/expect_error.hpp"
 
 namespace floorgrid::io {
@@ -34,18 +35,16 @@ void expect_same_pose(const Pose2& a, const Pose2& b, const std::string& what) {
   EXPECT_NEAR(normalize_angle(a.theta - b.theta), 0.0, 1e-9) << what;
 }
 
-TEST(BagLog, TheSameRunAsTheCarmenLogItWasWrittenFrom) {
-  REQUIRE_ROS1_BAGS();
-  for (const char* compression : {"none", "lz4"}) {
-    const fs::path bag =
-        bags().bag(std::string("run-") + compression, std::string("--compression ") + compression);
-    const ReadRobotLog log = read_robot_log(bag);
-    const CarmenLog& carmen = carmen_run();
-    ASSERT_EQ(log.scans.size(), 200u);
+/// Expects `log` to hold the first `n` scans of fr079's CARMEN log: the same readings, laser
+/// settings, poses and times.
+void expect_same_run(const ReadRobotLog& log, std::size_t n, const std::string& name) {
+  const CarmenLog& carmen = carmen_run();
+  ASSERT_EQ(log.scans.size(), n) << name;
+  {
     for (std::size_t i = 0; i < log.scans.size(); ++i) {
       const LaserScan& a = log.scans[i];
       const LaserScan& b = carmen.scans[i];
-      const std::string what = std::string(compression) + " scan " + std::to_string(i);
+      const std::string what = name + " scan " + std::to_string(i);
       EXPECT_NEAR(a.timestamp, b.timestamp, 1e-6) << what;
       EXPECT_EQ(a.ranges, b.ranges) << what;  // float32 in both: bit for bit
       // LaserScan's angles and ranges are float32; read as the decimal degrees and metres they
@@ -59,8 +58,38 @@ TEST(BagLog, TheSameRunAsTheCarmenLogItWasWrittenFrom) {
       for (std::size_t k = 0; k < a.ranges.size(); k += 37)
         EXPECT_EQ(a.range_kind(k), b.range_kind(k)) << what << " beam " << k;
     }
-    EXPECT_EQ(log.odometry.size(), 200u);
-    EXPECT_TRUE(log.summary.warnings.empty());
+  }
+  EXPECT_EQ(log.odometry.size(), n) << name;
+  EXPECT_TRUE(log.summary.warnings.empty()) << name;
+}
+
+TEST(BagLog, TheSameRunAsTheCarmenLogItWasWrittenFrom) {
+  REQUIRE_ROS1_BAGS();
+  for (const char* compression : {"none", "lz4"}) {
+    const fs::path bag =
+        bags().bag(std::string("run-") + compression, std::string("--compression ") + compression);
+    expect_same_run(read_robot_log(bag), 200, std::string("ROS 1 ") + compression);
+  }
+}
+
+TEST(BagLog, TheSameRunFromMcapAndRosbag2) {
+  FLOORGRID_REQUIRE_BAG_RECORDS(records);
+  const fs::path bags_dir = fs::path(FLOORGRID_SOURCE_DIR) / "tests/bags";
+  TempDir dir;
+  std::map<std::string, std::string> writers = {
+      {"db3", "/usr/bin/python3 " + test::quoted(bags_dir / "write_rosbag2_db3.py")}};
+  if (test::mcap_writer_missing().empty())
+    writers["mcap"] = "node " + test::quoted(bags_dir / "write_mcap.mjs");
+  else
+    ADD_FAILURE() << "MCAP writer missing: " << test::mcap_writer_missing();
+  for (const auto& [name, writer] : writers) {
+    const fs::path out = dir / ("run." + name);
+    const test::CommandResult made =
+        test::run_command(writer + " " + test::quoted(records) + " " + test::quoted(out) +
+                          (name == "mcap" ? " --compression zstd" : ""));
+    ASSERT_EQ(made.status, 0) << made.err;
+    const ReadRobotLog log = read_robot_log(out);
+    expect_same_run(log, 120, name);  // bag_records: the first 120 scans
   }
 }
 
