@@ -34,6 +34,18 @@ const char* to_string(BagFormat format) {
   return "?";
 }
 
+void add_topic_totals(BagContents& contents) {
+  for (const BagTopic& topic : contents.topics) {
+    if (topic.messages == 0)
+      continue;
+    if (contents.messages == 0 || topic.first_ns < contents.start_ns)
+      contents.start_ns = topic.first_ns;
+    if (contents.messages == 0 || topic.last_ns > contents.end_ns)
+      contents.end_ns = topic.last_ns;
+    contents.messages += topic.messages;
+  }
+}
+
 std::optional<BagFormat> detect_bag_format(const std::filesystem::path& path) {
   if (std::filesystem::is_directory(path))
     return rosbag2_folder_format(path);

@@ -61,6 +61,10 @@ struct BagContents {
   std::vector<std::string> warnings;
 };
 
+/// Sets `contents`' message count and time span from its topics' (topics without messages
+/// left out).
+void add_topic_totals(BagContents& contents);
+
 /// Called once per message whose topic was asked for, in file order.
 using BagVisitor = std::function<void(const BagTopic& topic, const BagMessageView& message)>;
 

@@ -172,13 +172,7 @@ PlanUnitDecision decide_units(const OccupancyGrid& gridmap, DxfFloorplan& dxf,
 /// The manifest's log (a bag or a CARMEN log, told by content). Warnings of the reading join
 /// `warnings`, prefixed with the file.
 RobotLog read_run(const DatasetManifest& m, std::vector<std::string>& warnings) {
-  BagLogOptions options;
-  options.scan_topic = m.log_scan_topic;
-  options.odom_topic = m.log_odom_topic;
-  options.base_frame = m.log_base_frame;
-  options.odom_frame = m.log_odom_frame;
-  options.laser = m.laser;
-  ReadRobotLog read = read_robot_log(*m.log, options);
+  ReadRobotLog read = read_robot_log(*m.log, bag_log_options(m));
   for (const std::string& warning : read.summary.warnings)
     warnings.push_back(m.log->string() + ": " + warning);
   return read;

@@ -15,6 +15,7 @@
 #include "floorgrid/io/dxf_reader.hpp"
 #include "floorgrid/io/map_io.hpp"
 #include "floorgrid/io/pairs_csv.hpp"
+#include "floorgrid/io/robot_log_reader.hpp"
 
 namespace floorgrid::io {
 
@@ -253,13 +254,7 @@ json describe_dataset(const std::filesystem::path& path) {
   j["gridmap"]["path"] = m.gridmap.string();
   j["gridmap"]["kind"] = "map";
   if (m.log) {
-    BagLogOptions options;
-    options.scan_topic = m.log_scan_topic;
-    options.odom_topic = m.log_odom_topic;
-    options.base_frame = m.log_base_frame;
-    options.odom_frame = m.log_odom_frame;
-    options.laser = m.laser;
-    j["log"] = describe_log(*m.log, options);
+    j["log"] = describe_log(*m.log, bag_log_options(m));
     j["log"]["kind"] = "log";
     j["log"]["path"] = m.log->string();
   }

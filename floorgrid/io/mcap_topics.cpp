@@ -75,19 +75,13 @@ BagContents TopicTable::contents(std::uint64_t file_bytes) const {
   contents.bytes = file_bytes;
   contents.topics = topics_;
   for (std::size_t i = 0; i < topics_.size(); ++i) {
-    BagTopic& topic = contents.topics[i];
+    const BagTopic& topic = contents.topics[i];
     if (encodings_[i] != "cdr" && encodings_[i] != "ros1")
       contents.warnings.push_back("topic " + topic.topic + " has message encoding '" +
                                   encodings_[i] +
                                   "', which floorgrid cannot decode (only cdr and ros1)");
-    if (topic.messages == 0)
-      continue;
-    if (contents.messages == 0 || topic.first_ns < contents.start_ns)
-      contents.start_ns = topic.first_ns;
-    if (contents.messages == 0 || topic.last_ns > contents.end_ns)
-      contents.end_ns = topic.last_ns;
-    contents.messages += topic.messages;
   }
+  add_topic_totals(contents);
   return contents;
 }
 

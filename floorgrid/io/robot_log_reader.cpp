@@ -4,6 +4,16 @@
 
 namespace floorgrid::io {
 
+BagLogOptions bag_log_options(const DatasetManifest& m) {
+  BagLogOptions options;
+  options.scan_topic = m.log_scan_topic;
+  options.odom_topic = m.log_odom_topic;
+  options.base_frame = m.log_base_frame;
+  options.odom_frame = m.log_odom_frame;
+  options.laser = m.laser;
+  return options;
+}
+
 ReadRobotLog read_robot_log(const std::filesystem::path& path, const BagLogOptions& options) {
   ReadRobotLog out;
   if (detect_bag_format(path)) {

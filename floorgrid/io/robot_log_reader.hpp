@@ -3,6 +3,7 @@
 #include <filesystem>
 
 #include "floorgrid/io/bag_log.hpp"
+#include "floorgrid/io/dataset_manifest.hpp"
 #include "floorgrid/io/robot_log_summary.hpp"
 #include "floorgrid/robot/robot_log.hpp"
 
@@ -12,6 +13,9 @@ namespace floorgrid::io {
 struct ReadRobotLog : RobotLog {
   RobotLogSummary summary;  ///< counts, settings used, warnings
 };
+
+/// The manifest's `log_topics`, `log_frames` and `laser`, as the bag reader takes them.
+BagLogOptions bag_log_options(const DatasetManifest& manifest);
 
 /// Reads a ROS 1 bag, an MCAP file or a rosbag2 bag (told by content: read_bag_log with
 /// `options`), else a CARMEN log (read_carmen_log with `options.laser`). Throws InputError as

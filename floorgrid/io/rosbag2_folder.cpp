@@ -145,15 +145,7 @@ BagContents read_bag_files(const std::vector<std::filesystem::path>& files, cons
     for (const std::string& warning : part.warnings)
       merged.warnings.push_back(file.filename().string() + ": " + warning);
   }
-  for (const BagTopic& topic : merged.topics) {
-    if (topic.messages == 0)
-      continue;
-    if (merged.messages == 0 || topic.first_ns < merged.start_ns)
-      merged.start_ns = topic.first_ns;
-    if (merged.messages == 0 || topic.last_ns > merged.end_ns)
-      merged.end_ns = topic.last_ns;
-    merged.messages += topic.messages;
-  }
+  add_topic_totals(merged);
   return merged;
 }
 

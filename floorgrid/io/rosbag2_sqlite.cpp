@@ -114,15 +114,7 @@ BagContents totals(const std::filesystem::path& path, std::vector<BagTopic> topi
   contents.warnings = std::move(warnings);
   std::error_code ec;
   contents.bytes = std::filesystem::file_size(path, ec);
-  for (const BagTopic& topic : contents.topics) {
-    if (topic.messages == 0)
-      continue;
-    if (contents.messages == 0 || topic.first_ns < contents.start_ns)
-      contents.start_ns = topic.first_ns;
-    if (contents.messages == 0 || topic.last_ns > contents.end_ns)
-      contents.end_ns = topic.last_ns;
-    contents.messages += topic.messages;
-  }
+  add_topic_totals(contents);
   return contents;
 }
 
