@@ -1,6 +1,7 @@
-// ROS 1 bag read speed: read_ros1_bag over a bag of LaserScan-sized messages, written at bench
-// time (never committed) with chunks uncompressed and lz4. A speed test, not a correctness test:
-// the bag is written by the few lines below (the correctness tests use python3-rosbag's bags).
+// Bag read speed: read_ros1_bag and read_mcap over a ROS 1 bag and an MCAP file of LaserScan-sized
+// messages, written at bench time (never committed) with chunks uncompressed and lz4. A speed
+// test, not a correctness test: the files are written by the few lines below (the correctness
+// tests use python3-rosbag's bags and @mcap/core's files).
 //
 // FLOORGRID_BAG_BENCH_MB sets the bag's size in MB (default 1024); FLOORGRID_BAG_BENCH_DIR the
 // folder it is written to (default the temp folder). Counters: MB/s of the file read, and the
@@ -16,6 +17,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -176,13 +178,74 @@ fs::path write_bag(const std::string& compression, std::uint64_t bytes) {
   return path;
 }
 
-void BM_ReadRos1Bag(benchmark::State& state, const std::string& compression) {
-  const fs::path path = write_bag(compression, bench_bytes());
+// ---- MCAP: records are opcode u8, length u64, content; strings u32 length + bytes ----
+
+std::string mcap_string(const std::string& s) {
+  return raw(static_cast<std::uint32_t>(s.size())) + s;
+}
+
+std::string mcap_record(std::uint8_t op, const std::string& content) {
+  std::string out(1, static_cast<char>(op));
+  put(out, static_cast<std::uint64_t>(content.size()));
+  return out + content;
+}
+
+/// Writes an MCAP file of about `bytes` bytes (no summary: read through); returns its path.
+fs::path write_mcap(const std::string& compression, std::uint64_t bytes) {
+  const fs::path path = bench_dir() / ("floorgrid-mcap-bench-" + compression + ".mcap");
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  const std::string magic("\x89MCAP0\r\n", 8);
+  out << magic << mcap_record(0x01, mcap_string("ros2") + mcap_string("floorgrid bench"))
+      << mcap_record(0x03, raw(std::uint16_t{1}) + mcap_string("sensor_msgs/msg/LaserScan") +
+                               mcap_string("ros2msg") + mcap_string("float32 angle_min\n..."))
+      << mcap_record(0x04, raw(std::uint16_t{1}) + raw(std::uint16_t{1}) + mcap_string("/scan") +
+                               mcap_string("cdr") + raw(std::uint32_t{0}));
+  std::uint64_t written = static_cast<std::uint64_t>(out.tellp());
+  std::uint32_t seq = 0;
+  std::string plain, packed;
+  while (written < bytes) {
+    plain.clear();
+    const std::uint64_t first_ns = 1'000'000'000'000ULL + seq * 25'000'000ULL;
+    while (plain.size() < kChunkThreshold) {
+      const std::uint64_t ns = 1'000'000'000'000ULL + seq * 25'000'000ULL;
+      plain += mcap_record(0x05, raw(std::uint16_t{1}) + raw(seq) + raw(ns) + raw(ns) +
+                                     std::string("\0\x01\0\0", 4) +
+                                     laser_scan(seq, static_cast<std::uint32_t>(ns / 1'000'000'000),
+                                                static_cast<std::uint32_t>(ns % 1'000'000'000)));
+      ++seq;
+    }
+    const std::string* data = &plain;
+    if (compression == "lz4") {
+      LZ4F_preferences_t preferences{};
+      preferences.frameInfo.blockSizeID = LZ4F_max4MB;
+      packed.resize(LZ4F_compressFrameBound(plain.size(), &preferences));
+      packed.resize(LZ4F_compressFrame(packed.data(), packed.size(), plain.data(), plain.size(),
+                                       &preferences));
+      data = &packed;
+    }
+    const std::uint64_t last_ns = 1'000'000'000'000ULL + (seq - 1) * 25'000'000ULL;
+    const std::string chunk = mcap_record(
+        0x06, raw(first_ns) + raw(last_ns) + raw(static_cast<std::uint64_t>(plain.size())) +
+                  raw(std::uint32_t{0}) + mcap_string(compression == "none" ? "" : compression) +
+                  raw(static_cast<std::uint64_t>(data->size())) + *data);
+    out << chunk;
+    written += chunk.size();
+  }
+  out << mcap_record(0x0F, raw(std::uint32_t{0}))
+      << mcap_record(0x02, raw(std::uint64_t{0}) + raw(std::uint64_t{0}) + raw(std::uint32_t{0}))
+      << magic;
+  return path;
+}
+
+using ReadBag = floorgrid::io::BagContents (*)(const fs::path&, const floorgrid::io::BagVisitor&,
+                                               const std::set<std::string>*);
+
+void read_bench(benchmark::State& state, const fs::path& path, ReadBag read) {
   const double file_mb = static_cast<double>(fs::file_size(path)) / (1024.0 * 1024.0);
   std::uint64_t messages = 0, payload = 0;
   for (auto _ : state) {
     messages = payload = 0;
-    floorgrid::io::read_ros1_bag(
+    read(
         path,
         [&](const floorgrid::io::BagTopic&, const floorgrid::io::BagMessageView& message) {
           ++messages;
@@ -198,11 +261,25 @@ void BM_ReadRos1Bag(benchmark::State& state, const std::string& compression) {
   state.counters["peak_rss_MB"] = peak_rss_mb();
   fs::remove(path);
 }
+void BM_ReadRos1Bag(benchmark::State& state, const std::string& compression) {
+  read_bench(state, write_bag(compression, bench_bytes()), &floorgrid::io::read_ros1_bag);
+}
+void BM_ReadMcap(benchmark::State& state, const std::string& compression) {
+  read_bench(state, write_mcap(compression, bench_bytes()), &floorgrid::io::read_mcap);
+}
 BENCHMARK_CAPTURE(BM_ReadRos1Bag, none, std::string("none"))
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->Iterations(3);
 BENCHMARK_CAPTURE(BM_ReadRos1Bag, lz4, std::string("lz4"))
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(3);
+BENCHMARK_CAPTURE(BM_ReadMcap, none, std::string("none"))
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(3);
+BENCHMARK_CAPTURE(BM_ReadMcap, lz4, std::string("lz4"))
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->Iterations(3);
