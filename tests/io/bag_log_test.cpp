@@ -11,6 +11,8 @@
 #include <numbers>
 
 #include "floorgrid/io/carmen_log.hpp"
+#include "floorgrid/io/line_reader.hpp"
+#include "floorgrid/io/pairs_csv.hpp"
 #include "floorgrid/io/robot_log_reader.hpp"
 #include "tests/io/ros1_bag_test_support.hpp"
 #include "tests/support/bag_writers.hpp"
@@ -182,15 +184,47 @@ TEST(BagLog, InfoAndPairsOnBags) {
 }
 
 /// `pairs` on a dataset of fr079's maps and `log`: its result.
-test::CommandResult pairs_on(const fs::path& log, const TempDir& dir) {
+test::CommandResult pairs_on(const fs::path& log, const TempDir& dir,
+                             const std::string& more = "") {
   const fs::path data = test::data_path("fr079");
   test::write_file(
       dir / "dataset.yaml",
       "floorplan: " + (data / "floorplan.png").string() +
           "\nfloorplan_resolution: 0.05\ngridmap: " + (data / "slam_map.png").string() +
-          "\ngridmap_resolution: 0.05\nlog: " + log.string() + "\n");
+          "\ngridmap_resolution: 0.05\nodometry_noise: [0.05, 0.01, 0.02, 0.05]\nlog: " +
+          log.string() + "\n" + more);
   return test::run_floorgrid("pairs " + test::quoted(dir.path()) + " --out " +
                              test::quoted(dir / "pairs.csv"));
+}
+
+TEST(BagLog, PairsFromABagAreTheCarmenLogsPairs) {
+  REQUIRE_ROS1_BAGS();
+  // The CARMEN log up to its 200th scan: the run the bags hold.
+  TempDir carmen_dir, bag_dir;
+  {
+    LineReader in(test::data_path("fr079/freiburg-079-corrected.log.gz"));
+    std::string text;
+    std::string_view line;
+    for (int scans = 0; scans < 200 && in.next(line);) {
+      text.append(line) += '\n';
+      scans += line.starts_with("FLASER ") ? 1 : 0;
+    }
+    test::write_file(carmen_dir / "run.log", text);
+  }
+  // The plan's scale given: 200 scans are too few to estimate it.
+  const std::string scale = "floorplan_scale: 1.11\n";
+  const test::CommandResult from_carmen = pairs_on(carmen_dir / "run.log", carmen_dir, scale);
+  const test::CommandResult from_bag =
+      pairs_on(bags().bag("run-lz4", "--compression lz4"), bag_dir, scale);
+  ASSERT_EQ(from_carmen.status, 0) << from_carmen.err;
+  ASSERT_EQ(from_bag.status, 0) << from_bag.err;
+  const ReferencePairs a = read_pairs_csv(carmen_dir / "pairs.csv");
+  const ReferencePairs b = read_pairs_csv(bag_dir / "pairs.csv");
+  ASSERT_GT(a.size(), 1000);
+  ASSERT_EQ(a.size(), b.size());
+  // The same pairs but for the last bit of the headings (yaw -> quaternion -> yaw).
+  EXPECT_LT((a.points_in_plan - b.points_in_plan).cwiseAbs().maxCoeff(), 1e-9);
+  EXPECT_LT((a.points_in_grid - b.points_in_grid).cwiseAbs().maxCoeff(), 1e-9);
 }
 
 TEST(BagLog, BadBagsStopTheJobWithExit2) {
