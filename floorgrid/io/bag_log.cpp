@@ -99,9 +99,15 @@ std::optional<std::string> choose_topic(const BagContents& contents, RosMessageK
                    file);
 }
 
+/// Odometry gaps longer than this are reported: a pose interpolated across them is a guess.
+constexpr std::int64_t kLongOdometryGapNs = 2'000'000'000;
+
 /// The robot's pose at `stamp` interpolated between the samples around it (sorted by stamp),
-/// or nullopt outside their span.
-std::optional<Pose2> interpolate(const std::vector<OdometrySample>& samples, std::int64_t stamp) {
+/// or nullopt outside their span. `gap_ns` is set to the time between those two samples (0 at a
+/// sample).
+std::optional<Pose2> interpolate(const std::vector<OdometrySample>& samples, std::int64_t stamp,
+                                 std::int64_t& gap_ns) {
+  gap_ns = 0;
   if (samples.empty() || stamp < samples.front().stamp_ns || stamp > samples.back().stamp_ns)
     return std::nullopt;
   const auto after =
@@ -111,6 +117,7 @@ std::optional<Pose2> interpolate(const std::vector<OdometrySample>& samples, std
     return after->pose;
   const OdometrySample& a = *(after - 1);
   const OdometrySample& b = *after;
+  gap_ns = b.stamp_ns - a.stamp_ns;
   const double f =
       static_cast<double>(stamp - a.stamp_ns) / static_cast<double>(b.stamp_ns - a.stamp_ns);
   return Pose2{a.pose.x + f * (b.pose.x - a.pose.x), a.pose.y + f * (b.pose.y - a.pose.y),
@@ -311,12 +318,14 @@ BagLog read_bag_log(const std::filesystem::path& path, const BagLogOptions& opti
                           std::atan2(T_base_laser.linear()(1, 0), T_base_laser.linear()(0, 0))};
 
   // Scans, each at the robot's interpolated pose.
-  std::size_t outside = 0;
+  std::size_t outside = 0, across_gaps = 0;
   MessageTypeCount& scan_count = counts[log.scan_topic];
   std::map<std::string, std::size_t> config_index;
   for (StampedScan& stamped : scans) {
     RosLaserScan& s = stamped.scan;
-    const std::optional<Pose2> robot = interpolate(samples, s.header.stamp_ns);
+    std::int64_t gap_ns = 0;
+    const std::optional<Pose2> robot = interpolate(samples, s.header.stamp_ns, gap_ns);
+    across_gaps += gap_ns > kLongOdometryGapNs ? 1 : 0;
     if (!robot) {
       ++outside;
       ++scan_count.not_data;
@@ -384,6 +393,11 @@ BagLog read_bag_log(const std::filesystem::path& path, const BagLogOptions& opti
     log.summary.warnings.push_back(
         fmt::format("{} of {} scans lie outside the odometry's time span and were skipped", outside,
                     scans.size()));
+  if (across_gaps > 0)
+    log.summary.warnings.push_back(fmt::format(
+        "{} scans lie in odometry gaps longer than {} s: their poses are interpolated across "
+        "the gap",
+        across_gaps, kLongOdometryGapNs / 1'000'000'000));
   if (log.scans.empty())
     throw InputError(fmt::format("no scan on {} lies within the odometry's time span ({})",
                                  log.scan_topic, log.odometry_source),

@@ -23,6 +23,7 @@ concatenation.
 Usage: write_ros1_bag.py RECORDS.jsonl OUT.bag [--compression none|bz2|lz4]
                          [--chunk-threshold BYTES] [--no-odom] [--dump]
                          [--mount x,y,yaw[,roll]] [--no-scan] [--extra-scan-topic TOPIC]
+                         [--odom-every N]
 """
 import argparse
 import hashlib
@@ -142,6 +143,8 @@ def main():
     parser.add_argument("--mount", help="x,y,yaw[,roll]: the laser on base_link instead of the "
                         "records' mount (roll pi: mounted upside down)")
     parser.add_argument("--no-scan", action="store_true", help="leave out /scan")
+    parser.add_argument("--odom-every", type=int, default=1, help="write only every Nth pose "
+                        "record's /odom and /tf (the first and last always)")
     parser.add_argument("--extra-scan-topic", help="also write every scan on this topic")
     parser.add_argument("--dump", action="store_true", help="also write each topic's "
                         "concatenated serialized messages to OUT.<topic>.bin")
@@ -168,7 +171,12 @@ def main():
                       "md5sum": TFMessage._md5sum, "message_definition": TFMessage._full_text,
                       "callerid": "/write_ros1_bag", "latching": "1"}
             rec.write("/tf_static", static, stamp, connection_header=header)
+        poses = [r for r in records if r["kind"] == "pose"]
+        kept = {id(r) for i, r in enumerate(poses)
+                if i % args.odom_every == 0 or i == len(poses) - 1}
         for r in records:
+            if r["kind"] == "pose" and id(r) not in kept:
+                continue
             if r["kind"] == "pose":
                 stamp = stamp_of(r["stamp"])
                 if not args.no_odom:

@@ -107,6 +107,17 @@ TEST(BagLog, OdometryFromTfWhenThereIsNoOdometryTopic) {
     expect_same_pose(with.scans[i].robot_pose, without.scans[i].robot_pose, std::to_string(i));
 }
 
+TEST(BagLog, ScansInLongOdometryGapsAreReported) {
+  REQUIRE_ROS1_BAGS();
+  // fr079 scans at about 4.5 Hz: odometry at every 20th scan leaves gaps of about 4 s.
+  const BagLog sparse = read_bag_log(bags().bag("sparse-odom", "--odom-every 20"));
+  ASSERT_EQ(sparse.scans.size(), 200u);
+  ASSERT_EQ(sparse.summary.warnings.size(), 1u);
+  EXPECT_NE(sparse.summary.warnings[0].find("odometry gaps longer than 2 s"), std::string::npos)
+      << sparse.summary.warnings[0];
+  EXPECT_TRUE(read_bag_log(bags().bag("run-lz4", "--compression lz4")).summary.warnings.empty());
+}
+
 TEST(BagLog, ALaserMountedOffCentreRotatedAndUpsideDown) {
   REQUIRE_ROS1_BAGS();
   const Pose2 mount{0.2, 0.1, 0.5};
