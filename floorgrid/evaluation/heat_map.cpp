@@ -137,15 +137,53 @@ HeatMap uncertainty_map(const PointMapping& model, const GridGeometry& raster, c
   const auto start = Clock::now();
   const bool has_std = model.error_model().has_value();
   HeatMap map = empty_map(raster, has_std ? "std_m" : "nearest_pair_m");
-  for_cells_in_mask(raster, mask, options,
-                    [&](const Eigen::Matrix2Xd& points, const std::vector<std::size_t>& cells) {
-                      for (std::size_t k = 0; k < cells.size(); ++k) {
-                        const Eigen::Vector2d p = points.col(static_cast<Eigen::Index>(k));
-                        const double v = has_std ? model.error_std(p).value_or(NAN)
-                                                 : model.nearest_pair_in_plan(p);
-                        map.values[cells[k]] = static_cast<float>(v);
-                      }
-                    });
+  const auto value_at = [&](const Eigen::Vector2d& p) {
+    return has_std ? model.error_std(p).value_or(NAN) : model.nearest_pair_in_plan(p);
+  };
+  const int step = std::max(1, options.uncertainty_step);
+  if (step == 1 || raster.width < 2 || raster.height < 2) {
+    for_cells_in_mask(raster, mask, options,
+                      [&](const Eigen::Matrix2Xd& points, const std::vector<std::size_t>& cells) {
+                        for (std::size_t k = 0; k < cells.size(); ++k)
+                          map.values[cells[k]] = static_cast<float>(
+                              value_at(points.col(static_cast<Eigen::Index>(k))));
+                      });
+    map.seconds = seconds_since(start);
+    return map;
+  }
+  // The lattice: cell centres of every step-th column and row, and the last ones.
+  const auto nodes_of = [step](int cells) {
+    std::vector<int> nodes;
+    for (int i = 0; i < cells; i += step)
+      nodes.push_back(i);
+    if (nodes.back() != cells - 1)
+      nodes.push_back(cells - 1);
+    return nodes;
+  };
+  const std::vector<int> xs = nodes_of(raster.width), ys = nodes_of(raster.height);
+  std::vector<double> lattice(xs.size() * ys.size());
+  parallel_chunks(ys.size(), 8, options.threads, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t j = begin; j < end; ++j)
+      for (std::size_t i = 0; i < xs.size(); ++i)
+        lattice[j * xs.size() + i] = value_at(raster.cell_center(xs[i], ys[j]));
+  });
+  const auto width = static_cast<std::size_t>(raster.width);
+  parallel_chunks(
+      raster.size(), options.chunk, options.threads, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t c = begin; c < end; ++c) {
+          if (!mask.empty() && mask[c] == 0)
+            continue;
+          const int ix = static_cast<int>(c % width), iy = static_cast<int>(c / width);
+          const std::size_t i = std::min<std::size_t>(ix / step, xs.size() - 2);
+          const std::size_t j = std::min<std::size_t>(iy / step, ys.size() - 2);
+          const double u = static_cast<double>(ix - xs[i]) / static_cast<double>(xs[i + 1] - xs[i]);
+          const double v = static_cast<double>(iy - ys[j]) / static_cast<double>(ys[j + 1] - ys[j]);
+          const auto at = [&](std::size_t a, std::size_t b) { return lattice[b * xs.size() + a]; };
+          map.values[c] =
+              static_cast<float>((1 - u) * (1 - v) * at(i, j) + u * (1 - v) * at(i + 1, j) +
+                                 (1 - u) * v * at(i, j + 1) + u * v * at(i + 1, j + 1));
+        }
+      });
   map.seconds = seconds_since(start);
   return map;
 }

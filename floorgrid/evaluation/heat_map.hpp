@@ -23,6 +23,10 @@ struct HeatMapOptions {
   /// Cells mapped per batch: the unit of work shared between threads.
   std::size_t chunk = 1 << 15;
   int threads = kDefaultThreads;  ///< threads; the result does not depend on it
+  /// Cells between the nodes at which the uncertainty map evaluates std_m (bilinear between
+  /// them; 1: every cell). std_m's local part costs microseconds a point; the map is a guide
+  /// to where the mapping is guessed, not a measurement. The error map is always exact.
+  int uncertainty_step = 4;
 };
 
 /// Which cells of a raster are in a heat map's domain: 1 in, 0 out, one byte per cell, indexed

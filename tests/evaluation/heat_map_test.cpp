@@ -156,7 +156,9 @@ TEST(HeatMap, UncertaintyWithoutAnErrorModelIsTheDistanceToTheNearestPair) {
   const auto model = fitted("gt", pairs);
   ASSERT_FALSE(model->error_model().has_value());
   const GridGeometry g = raster(30, 30, 0.3);
-  const HeatMap map = uncertainty_map(*model, g, CellMask(g.size(), 1));
+  HeatMapOptions exact;
+  exact.uncertainty_step = 1;
+  const HeatMap map = uncertainty_map(*model, g, CellMask(g.size(), 1), exact);
   EXPECT_EQ(map.quantity, "nearest_pair_m");
   for (int iy = 0; iy < g.height; ++iy) {
     for (int ix = 0; ix < g.width; ++ix) {
@@ -176,12 +178,22 @@ TEST(HeatMap, UncertaintyWithAnErrorModelIsItsStd) {
   e.growth = 0.1;
   model->set_error_model(e);
   const GridGeometry g = raster(20, 20, 0.3);
-  const HeatMap map = uncertainty_map(*model, g, CellMask(g.size(), 1));
+  HeatMapOptions exact;
+  exact.uncertainty_step = 1;
+  const HeatMap map = uncertainty_map(*model, g, CellMask(g.size(), 1), exact);
   EXPECT_EQ(map.quantity, "std_m");
   for (int iy = 0; iy < g.height; ++iy)
     for (int ix = 0; ix < g.width; ++ix)
       EXPECT_NEAR(map.values[static_cast<std::size_t>(iy) * g.width + ix],
                   *model->error_std(g.cell_center(ix, iy)), 1e-6);
+  // The default lattice (std_m every 4th cell, bilinear between) on 5 cm cells: within
+  // 2 cm of it (the kinks of the nearest-pair distance), exact at the nodes.
+  const GridGeometry fine = raster(120, 120, 0.05);
+  const HeatMap all = uncertainty_map(*model, fine, CellMask(fine.size(), 1), exact);
+  const HeatMap coarse = uncertainty_map(*model, fine, CellMask(fine.size(), 1));
+  for (std::size_t i = 0; i < all.values.size(); ++i)
+    EXPECT_NEAR(coarse.values[i], all.values[i], 0.02) << i;
+  EXPECT_FLOAT_EQ(coarse.values[4 * 120 + 8], all.values[4 * 120 + 8]);
 }
 
 }  // namespace
