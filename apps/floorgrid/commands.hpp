@@ -15,6 +15,8 @@ void add_fit_command(CLI::App& root);
 void add_map_command(CLI::App& root);
 /// `floorgrid pairs`.
 void add_pairs_command(CLI::App& root);
+/// `floorgrid evaluate`.
+void add_evaluate_command(CLI::App& root);
 /// `floorgrid align`.
 void add_align_command(CLI::App& root);
 /// `floorgrid demo`.

@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
   floorgrid::app::add_fit_command(root);
   floorgrid::app::add_map_command(root);
   floorgrid::app::add_pairs_command(root);
+  floorgrid::app::add_evaluate_command(root);
   floorgrid::app::add_align_command(root);
   floorgrid::app::add_demo_command(root);
   floorgrid::app::add_config_command(root);

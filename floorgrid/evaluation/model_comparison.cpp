@@ -16,6 +16,22 @@ MappingOptions run_mapping_defaults() {
   return options;
 }
 
+void judge_model(ModelReport& report, const EvaluationDomain& domain,
+                 const std::optional<GroundTruth>& truth, const Eigen::Matrix2Xd& drift_points,
+                 const ModelComparisonOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  if (truth && domain.points_in_plan.cols() > 0) {
+    const std::vector<double> errors = model_errors(*report.model, domain.points_in_plan, *truth);
+    report.errors = error_statistics(errors);
+    report.histogram = error_histogram(errors);
+    report.calibration = calibration(*report.model, domain.points_in_plan, errors);
+  }
+  report.back_and_forth = back_and_forth(*report.model, drift_points, options.back_and_forth_rounds,
+                                         options.back_and_forth_points);
+  report.evaluate_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
 std::vector<ModelReport> compare_models(const ReferencePairs& pairs, const EvaluationDomain& domain,
                                         const std::optional<GroundTruth>& truth,
                                         const std::optional<PairNoise>& noise,
@@ -82,18 +98,7 @@ std::vector<ModelReport> compare_models(const ReferencePairs& pairs, const Evalu
       reports[k] = std::move(report);
       continue;
     }
-    const auto start = std::chrono::steady_clock::now();
-    if (truth && domain.points_in_plan.cols() > 0) {
-      const std::vector<double> errors = model_errors(*report.model, domain.points_in_plan, *truth);
-      report.errors = error_statistics(errors);
-      report.histogram = error_histogram(errors);
-      report.calibration = calibration(*report.model, domain.points_in_plan, errors);
-    }
-    report.back_and_forth =
-        back_and_forth(*report.model, domain.points_in_plan, options.back_and_forth_rounds,
-                       options.back_and_forth_points);
-    report.evaluate_seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    judge_model(report, domain, truth, domain.points_in_plan, options);
     reports[k] = std::move(report);
   }
   if (progress)

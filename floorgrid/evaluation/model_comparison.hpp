@@ -47,6 +47,15 @@ struct ModelComparisonOptions {
   std::size_t back_and_forth_points = 300;  ///< domain points followed
 };
 
+/// Judges a fitted model (report.model set): with a truth and domain points, its errors over the
+/// domain, their histogram and its std_m's calibration; its back-and-forth drift over
+/// `drift_points_in_plan` (align passes the domain's points); report.evaluate_seconds. The one
+/// judge of `align` and `evaluate`.
+void judge_model(ModelReport& report, const EvaluationDomain& domain,
+                 const std::optional<GroundTruth>& truth,
+                 const Eigen::Matrix2Xd& drift_points_in_plan,
+                 const ModelComparisonOptions& options);
+
 /// Progress: the model being worked on, and how many are done.
 using ModelProgress =
     std::function<void(const std::string& model, std::size_t done, std::size_t total)>;

@@ -2,9 +2,11 @@
 
 #include <chrono>
 #include <cmath>
+#include <map>
 
 #include "floorgrid/evaluation/overlay.hpp"
 #include "floorgrid/io/atomic_file.hpp"
+#include "floorgrid/io/heat_map_files.hpp"
 #include "floorgrid/io/image_io.hpp"
 #include "floorgrid/io/model_io.hpp"
 #include "floorgrid/io/pairs_csv.hpp"
@@ -22,7 +24,9 @@ json number(double v) {
   return std::isfinite(v) ? json(v) : json(nullptr);
 }
 
-json model_json(const ModelAlignment& m) {
+}  // namespace
+
+json model_metrics_json(const ModelAlignment& m) {
   const ModelReport& r = m.report;
   json j = json::object();
   if (!r.failure.empty()) {
@@ -71,6 +75,8 @@ json model_json(const ModelAlignment& m) {
   return j;
 }
 
+namespace {
+
 /// The gridmap with the plan's walls drawn through `plan_to_grid`.
 void draw_walls(RgbImage& picture, const AlignmentInputs& in,
                 const std::function<Eigen::Vector2d(const Eigen::Vector2d&)>& plan_to_grid,
@@ -86,6 +92,15 @@ void draw_walls(RgbImage& picture, const AlignmentInputs& in,
 }
 
 }  // namespace
+
+RgbImage overlay_picture(const RgbImage& background, const AlignmentInputs& in,
+                         const PointMapping& model, const std::optional<GroundTruth>& truth) {
+  RgbImage picture = background;
+  if (truth)
+    draw_walls(picture, in, *truth, {0, 170, 0});
+  draw_walls(picture, in, [&](const Eigen::Vector2d& p) { return model.forward(p); }, {220, 0, 0});
+  return picture;
+}
 
 json metrics_json(const Alignment& a, const std::string& dataset, const AlignmentTimings& t,
                   const json& floorplan_units) {
@@ -141,7 +156,7 @@ json metrics_json(const Alignment& a, const std::string& dataset, const Alignmen
   j["domain"] = {{"kind", a.domain.kind}, {"points", a.domain.points_in_plan.cols()}};
   j["models"] = json::object();
   for (const ModelAlignment& m : a.models)
-    j["models"][m.report.name] = model_json(m);
+    j["models"][m.report.name] = model_metrics_json(m);
   j["chosen_model"] = a.chosen.empty() ? json(nullptr) : json(a.chosen);
   j["timings_s"] = {{"load", t.load},
                     {"global_localization", l.global_localization_seconds},
@@ -150,7 +165,8 @@ json metrics_json(const Alignment& a, const std::string& dataset, const Alignmen
                     {"pairs", l.pairs_seconds},
                     {"fit", a.fit_seconds},
                     {"evaluate", a.evaluate_seconds},
-                    {"write", t.write}};
+                    {"write", t.write},
+                    {"heat_maps", t.heat_maps}};
   return j;
 }
 
@@ -166,6 +182,9 @@ AlignmentFiles write_alignment(const Alignment& a, const AlignmentInputs& in,
   write_scans_csv(a.localization, in.log, folder / "scans.csv");
   files.files.emplace_back("scans.csv");
   const RgbImage background = grid_picture(in.gridmap);
+  const HeatMapDomain heat_domain = heat_map_domain(in, a.truth, a.domain.kind);
+  timings.heat_maps = heat_domain.seconds;
+  std::map<std::string, json> heat_maps;
   for (const ModelAlignment& m : a.models) {
     if (!m.report.model)
       continue;
@@ -173,15 +192,15 @@ AlignmentFiles write_alignment(const Alignment& a, const AlignmentInputs& in,
     const std::string name = m.report.name;
     write_model(model, folder / ("model-" + name + ".json"));
     files.files.emplace_back("model-" + name + ".json");
-    RgbImage picture = background;
-    if (a.truth)
-      draw_walls(picture, in, *a.truth, {0, 170, 0});
-    draw_walls(picture, in, [&](const Eigen::Vector2d& p) { return model.forward(p); },
-               {220, 0, 0});
+    const RgbImage picture = overlay_picture(background, in, model, a.truth);
     const std::filesystem::path overlay =
         std::filesystem::path("overlays") / ("overlay-" + name + ".png");
     write_png_rgb(folder / overlay, picture.width, picture.height, picture.rgb);
     files.files.push_back(overlay);
+    const ModelHeatMaps heat = write_model_heat_maps(folder, name, model, in, a.truth, heat_domain);
+    files.files.insert(files.files.end(), heat.files.begin(), heat.files.end());
+    heat_maps[name] = heat.metrics;
+    timings.heat_maps += heat.seconds;
   }
   // auto's choice is also a model of its own: model.json is that model's file.
   if (!a.chosen.empty()) {
@@ -194,9 +213,12 @@ AlignmentFiles write_alignment(const Alignment& a, const AlignmentInputs& in,
       }
     }
   }
-  timings.write = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  write_file_atomically(folder / "metrics.json",
-                        metrics_json(a, dataset, timings, floorplan_units).dump(1) + "\n");
+  timings.write = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() -
+                  timings.heat_maps;
+  json metrics = metrics_json(a, dataset, timings, floorplan_units);
+  for (const auto& [name, heat] : heat_maps)
+    metrics["models"][name]["heat_map"] = heat;
+  write_file_atomically(folder / "metrics.json", metrics.dump(1) + "\n");
   files.files.emplace_back("metrics.json");
   return files;
 }

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "floorgrid/evaluation/overlay.hpp"
 #include "floorgrid/pipeline/align.hpp"
 
 namespace floorgrid::io {
@@ -12,9 +13,20 @@ namespace floorgrid::io {
 /// Wall-clock seconds of the main job's stages (metrics.json `timings_s`); the localization's
 /// own stages come from the Alignment.
 struct AlignmentTimings {
-  double load = 0.0;   ///< reading the dataset
-  double write = 0.0;  ///< writing the outputs (all but metrics.json itself)
+  double load = 0.0;       ///< reading the dataset
+  double write = 0.0;      ///< writing the outputs (all but metrics.json itself and the heat maps)
+  double heat_maps = 0.0;  ///< computing and writing heatmaps/ (every model's)
 };
+
+/// One model's part of metrics.json (`models.<name>`): its failure, or its errors against the
+/// truth, histogram, calibration, fit, cross-validation, uncertainty, back-and-forth and wall
+/// distances. Shared by `align` and `evaluate`.
+nlohmann::json model_metrics_json(const ModelAlignment& model);
+
+/// The overlay of a model (thesis Fig. 6.1-6.13): the plan's walls through the model (red) and
+/// through the truth when known (green) on `background` (grid_picture of the gridmap).
+RgbImage overlay_picture(const RgbImage& background, const AlignmentInputs& inputs,
+                         const PointMapping& model, const std::optional<GroundTruth>& truth);
 
 /// metrics.json (SPEC, a contract): pairs, plan scale, domain, per model errors against the
 /// truth, fit time, cross-validated error, back-and-forth drift and wall distances, timings;
@@ -32,7 +44,8 @@ struct AlignmentFiles {
 /// Writes the main job's results into `folder` (created when missing), each file atomically:
 /// pairs.csv, model-<name>.json per fitted model, model.json (the model `auto` chose),
 /// overlays/overlay-<name>.png (the plan's walls through each model, red, and through the truth
-/// when known, green, on the gridmap) and metrics.json last. `timings.write` is filled in.
+/// when known, green, on the gridmap), heatmaps/heat-<name>.png and heatmaps/std-<name>.png
+/// (write_model_heat_maps) and metrics.json last. `timings.write` is filled in.
 AlignmentFiles write_alignment(const Alignment& alignment, const AlignmentInputs& inputs,
                                const std::string& dataset, const std::filesystem::path& folder,
                                AlignmentTimings& timings,

@@ -367,4 +367,10 @@ void write_png_rgb(const std::filesystem::path& path, int width, int height,
   write_file_atomically(path, encode_png(width, height, 3, rgb));
 }
 
+void write_png_rgba(const std::filesystem::path& path, int width, int height,
+                    const std::vector<std::uint8_t>& rgba) {
+  check_buffer(path, width, height, 4, rgba.size());
+  write_file_atomically(path, encode_png(width, height, 4, rgba));
+}
+
 }  // namespace floorgrid::io

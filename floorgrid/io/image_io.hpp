@@ -48,4 +48,9 @@ void write_png(const std::filesystem::path& path, int width, int height,
 void write_png_rgb(const std::filesystem::path& path, int width, int height,
                    const std::vector<std::uint8_t>& rgb);
 
+/// Writes an 8-bit RGBA PNG atomically (heat maps: transparent where unknown). `rgba` holds 4
+/// bytes per pixel.
+void write_png_rgba(const std::filesystem::path& path, int width, int height,
+                    const std::vector<std::uint8_t>& rgba);
+
 }  // namespace floorgrid::io

@@ -18,41 +18,6 @@ double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-/// The truth and the name of its domain: a simulator's warp, or the hand-picked pairs through
-/// the Delaunay model (the thesis's ground truth). Empty without either.
-struct Truth {
-  std::optional<GroundTruth> plan_to_grid;
-  std::string kind = "none";
-};
-
-Truth dataset_truth(const AlignmentInputs& in) {
-  if (in.truth_warp)
-    return {in.truth_warp, "warp"};
-  if (in.manual_pairs && in.manual_pairs->size() >= 3) {
-    MappingOptions dt;
-    dt.model = "dt";
-    // Shared by the function: the truth outlives this call (Alignment::truth).
-    std::shared_ptr<PointMapping> model = make_mapping(dt);
-    model->fit(*in.manual_pairs);
-    return {[model](const Eigen::Vector2d& p) { return model->forward(p); }, "manual_pairs_hull"};
-  }
-  return {};
-}
-
-/// The truth's domain: where a warp is known to hold (the gridmap saw something near), or
-/// inside the manual pairs' hull; nothing without a truth.
-EvaluationDomain truth_domain(const AlignmentInputs& in, const Truth& truth, double spacing) {
-  if (truth.kind == "warp") {
-    return in.plan ? warp_domain(*in.plan, in.gridmap, *truth.plan_to_grid, spacing)
-                   : warp_domain(in.plan_wall_samples, in.gridmap, *truth.plan_to_grid, spacing);
-  }
-  if (truth.kind == "manual_pairs_hull") {
-    return in.plan ? hull_domain(*in.plan, in.manual_pairs->points_in_plan, spacing)
-                   : hull_domain(in.plan_wall_samples, in.manual_pairs->points_in_plan, spacing);
-  }
-  return {"none", Eigen::Matrix2Xd(2, 0), spacing};
-}
-
 /// Each pair's distance from where the truth puts its plan point.
 ErrorStatistics pair_errors(const ReferencePairs& pairs, const GroundTruth& truth) {
   std::vector<double> errors(static_cast<std::size_t>(pairs.size()));
@@ -98,6 +63,33 @@ void fit_and_judge_models(const AlignmentInputs& in, const AlignmentOptions& opt
 
 }  // namespace
 
+DatasetTruth dataset_truth(const AlignmentInputs& in) {
+  if (in.truth_warp)
+    return {in.truth_warp, "warp"};
+  if (in.manual_pairs && in.manual_pairs->size() >= 3) {
+    MappingOptions dt;
+    dt.model = "dt";
+    // Shared by the function: the truth outlives this call (Alignment::truth).
+    std::shared_ptr<PointMapping> model = make_mapping(dt);
+    model->fit(*in.manual_pairs);
+    return {[model](const Eigen::Vector2d& p) { return model->forward(p); }, "manual_pairs_hull"};
+  }
+  return {};
+}
+
+EvaluationDomain truth_domain(const AlignmentInputs& in, const DatasetTruth& truth,
+                              double spacing) {
+  if (truth.kind == "warp") {
+    return in.plan ? warp_domain(*in.plan, in.gridmap, *truth.plan_to_grid, spacing)
+                   : warp_domain(in.plan_wall_samples, in.gridmap, *truth.plan_to_grid, spacing);
+  }
+  if (truth.kind == "manual_pairs_hull") {
+    return in.plan ? hull_domain(*in.plan, in.manual_pairs->points_in_plan, spacing)
+                   : hull_domain(in.plan_wall_samples, in.manual_pairs->points_in_plan, spacing);
+  }
+  return {"none", Eigen::Matrix2Xd(2, 0), spacing};
+}
+
 WallDistance wall_distance(const Eigen::Matrix2Xd& samples, const Eigen::Matrix2Xd& mapped,
                            const OccupancyGrid& gridmap, const Eigen::Matrix2Xd& pair_points,
                            double near, double cap) {
@@ -137,7 +129,7 @@ Alignment align(const AlignmentInputs& in, const AlignmentOptions& options,
     return a;
 
   // The truth, where it holds, and the pairs against it.
-  const Truth truth = dataset_truth(in);
+  const DatasetTruth truth = dataset_truth(in);
   a.truth = truth.plan_to_grid;
   a.domain = truth_domain(in, truth, options.domain_spacing);
   if (in.truth_warp && a.localization.pairs.size() > 0)

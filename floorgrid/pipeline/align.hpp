@@ -95,6 +95,23 @@ using AlignmentProgressCallback = std::function<void(const AlignmentProgress&)>;
 Alignment align(const AlignmentInputs& inputs, const AlignmentOptions& options = {},
                 const AlignmentProgressCallback& progress = {});
 
+/// A dataset's truth and the name of its domain: a simulator's warp ("warp"), or the
+/// hand-picked pairs through the Delaunay model ("manual_pairs_hull", the thesis's ground
+/// truth); kind "none" and no function without either. The one truth of `align` and `evaluate`.
+struct DatasetTruth {
+  std::optional<GroundTruth> plan_to_grid;  ///< plan -> grid, when there is a truth
+  std::string kind = "none";                ///< "warp", "manual_pairs_hull" or "none"
+};
+
+/// The truth of `inputs` (its warp, else its manual pairs through dt).
+DatasetTruth dataset_truth(const AlignmentInputs& inputs);
+
+/// The truth's domain: plan wall samples every `spacing` metres where a warp is known to hold
+/// (the gridmap saw something near), or inside the manual pairs' hull; no points without a
+/// truth.
+EvaluationDomain truth_domain(const AlignmentInputs& inputs, const DatasetTruth& truth,
+                              double spacing);
+
 /// The distance from each plan wall point, mapped by `plan_to_grid`, to the nearest occupied
 /// cell of `gridmap` (capped at `cap` metres), summarized over all points and over those
 /// within `near` metres of a pair's plan point.
