@@ -16,6 +16,7 @@
 #include "floorgrid/io/dataset_loader.hpp"
 #include "floorgrid/io/export_bundle.hpp"
 #include "floorgrid/io/export_inputs.hpp"
+#include "floorgrid/io/report_html.hpp"
 
 namespace floorgrid::app {
 
@@ -45,6 +46,20 @@ void write_align_exports(const Alignment& a, const io::LoadedDataset& d,
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   } catch (const InputError& e) {
     spdlog::warn("exports not written: {}", e.what());
+  }
+}
+
+/// report.html from the folder's files, last (it lists the exports). A failure here costs the
+/// report, not the job.
+void write_align_report(const std::filesystem::path& out) {
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    const std::filesystem::path report = io::write_report_html(out);
+    fmt::print("report      {} ({:.2f} s; open it in a browser, it needs no network)\n",
+               report.string(),
+               std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  } catch (const std::exception& e) {
+    spdlog::warn("report.html not written: {}", e.what());
   }
 }
 
@@ -100,10 +115,16 @@ void run_align(const std::string& dataset, const std::string& out, const JobOpti
   fmt::print("\nwrote {} files to {} (metrics.json, model.json, overlays/)\n", files.files.size(),
              files.folder.string());
   // What was learnt is written (metrics.json holds the localization's story), but a run that
-  // made no pairs is a failure, not a result.
-  require_pairs(a.localization, d);
-  require_plan_match(a.plan_match, d, options.align.localization.plan_location);
+  // made no pairs is a failure, not a result; its report still tells what happened.
+  try {
+    require_pairs(a.localization, d);
+    require_plan_match(a.plan_match, d, options.align.localization.plan_location);
+  } catch (...) {
+    write_align_report(out);
+    throw;
+  }
   write_align_exports(a, d, out);
+  write_align_report(out);
 }
 
 void add_align_command(CLI::App& root) {
