@@ -19,40 +19,59 @@
   }
 
   // Error histograms: the share of the domain's points per 0.05 m bin, one stepped line per
-  // model; the chosen model drawn thicker.
-  function drawHistograms() {
-    const element = document.getElementById('chart-histogram');
+  // model, the chosen model drawn thicker; then the same added up (share within each error).
+  function drawHistograms(elementId, cumulative) {
+    const element = document.getElementById(elementId);
     const names = data.models.filter((name) => name in data.histograms);
     if (!element || names.length === 0) return;
     const bins = data.histograms[names[0]].length;
-    const x = Array.from({ length: bins }, (_, i) => 0.05 * i);
+    const x = Array.from({ length: bins }, (_, i) => 0.05 * (cumulative ? i + 1 : i));
     const columns = [x];
-    const series = [{ label: 'error from', value: (u, v) => (v == null ? '' : binLabel(v)) }];
+    const series = [{ label: cumulative ? 'error up to' : 'error',
+                      value: (u, v) => (v == null ? '' : cumulative ? upTo(v) : binLabel(v)) }];
     names.forEach((name, k) => {
       const counts = data.histograms[name];
       const total = counts.reduce((a, b) => a + b, 0);
-      columns.push(counts.map((n) => (total > 0 ? (100 * n) / total : null)));
+      let sum = 0;
+      columns.push(counts.map((n) => {
+        sum += n;
+        return total > 0 ? (100 * (cumulative ? sum : n)) / total : null;
+      }));
       const chosen = name === data.chosen;
       series.push({
         label: chosen ? name + ' (chosen)' : name,
         stroke: palette[k % palette.length],
         width: chosen ? 3 : 1.5,
-        paths: uPlot.paths.stepped({ align: 1 }),
+        paths: uPlot.paths.stepped({ align: cumulative ? -1 : 1 }),
         points: { show: false },
         value: (u, v) => (v == null ? '' : v.toFixed(1) + '%'),
       });
     });
+    // Up to the last bin that holds at least 0.5% of some model's points (and one bin more):
+    // the whole width to 1.0 m and more only when a model has errors that large.
+    let last = 0;
+    names.forEach((name) => {
+      const counts = data.histograms[name];
+      const total = counts.reduce((a, b) => a + b, 0);
+      counts.forEach((n, i) => { if (total > 0 && n / total >= 0.005) last = Math.max(last, i); });
+    });
+    const right = 0.05 * Math.min(bins, last + 2);
     place(element, {
-      height: 300,
+      height: cumulative ? 240 : 280,
       series: series,
-      scales: { x: { time: false, range: [0, 0.05 * bins] }, y: { range: (u, lo, hi) => [0, hi * 1.05] } },
+      scales: { x: { time: false, range: [0, right] },
+                y: { range: cumulative ? [0, 100] : (u, lo, hi) => [0, hi * 1.05] } },
       axes: [
-        { label: 'error against the truth (m); the last bin is 1.0 m and more',
+        { label: cumulative ? 'error against the truth (m)'
+                            : 'error against the truth (m); the last bin is 1.0 m and more',
           values: (u, splits) => splits.map((v) => v.toFixed(2)) },
-        { label: 'share of domain points (%)', size: 60 },
+        { label: cumulative ? 'points within (%)' : 'share of points (%)', size: 60 },
       ],
-      legend: { live: true },
     }, columns);
+  }
+
+  function upTo(v) {
+    return v >= 1.04 ? 'any' : v.toFixed(2) + ' m';
   }
 
   function binLabel(from) {
@@ -71,7 +90,7 @@
     const rows = ['', 'pairs made', 'plan filter', 'gridmap filter'];
     const band = (label, colour) => ({
       label: label, stroke: colour, width: 10, points: { show: false },
-      value: (u, v) => (v == null ? 'no' : 'yes'),
+      value: (u, v, seriesIndex, index) => (index == null ? '' : v == null ? 'no' : 'yes'),
     });
     place(top, {
       height: 150,
@@ -110,7 +129,8 @@
     });
   }
 
-  drawHistograms();
+  drawHistograms('chart-histogram', false);
+  drawHistograms('chart-cumulative', true);
   drawLocalization();
   zoomablePictures();
   window.addEventListener('resize', () => {

@@ -45,7 +45,7 @@ std::string format_metres(double metres) {
   if (!std::isfinite(metres))
     return "n/a";
   if (metres == 0.0)
-    return "0 m";
+    return "0.000 m";
   // Below a millimetre only the magnitude matters (round-trip drift of 1e-10 m is not "0.000").
   if (std::abs(metres) < 0.0005)
     return fmt::format("{:.1e} m", metres);
@@ -90,7 +90,13 @@ std::string format_count(const nlohmann::json& count) {
 }
 
 std::string format_ratio(const nlohmann::json& value) {
-  return finite_number(value) ? fmt::format("{:.4f}", value.get<double>()) : "n/a";
+  if (!finite_number(value))
+    return "n/a";
+  const double v = value.get<double>();
+  // A spread of a well-fixed scale is far below 1e-4: its magnitude, not "0.0000".
+  if (v != 0.0 && std::abs(v) < 0.0005)
+    return fmt::format("{:.1e}", v);
+  return fmt::format("{:.4f}", v);
 }
 
 }  // namespace floorgrid::io

@@ -13,7 +13,7 @@ namespace floorgrid::io {
 std::string html_escape(std::string_view text);
 
 /// A length: "0.042 m" (millimetres shown), "12.345 m", or "3.2e-10 m" below a millimetre (the
-/// back-and-forth drift), "0 m" for zero; "n/a" when not finite.
+/// back-and-forth drift), "0.000 m" for zero; "n/a" when not finite.
 std::string format_metres(double metres);
 /// A metrics.json length (a number, or null: "n/a").
 std::string format_metres(const nlohmann::json& metres);
@@ -31,7 +31,8 @@ std::string format_count(long long count);
 /// A metrics.json count (a number, or null: "n/a").
 std::string format_count(const nlohmann::json& count);
 
-/// A plain ratio such as a scale: 4 decimals, "1.0213"; "n/a" when not finite or null.
+/// A plain ratio such as a scale: 4 decimals, "1.0213", or "2.1e-05" below 0.0005 (a scale's
+/// spread); "n/a" when not finite or null.
 std::string format_ratio(const nlohmann::json& value);
 
 }  // namespace floorgrid::io

@@ -110,8 +110,17 @@ std::string why_chosen(const ReportContext& c) {
         html_escape(text_of(json_at(details, {"folds"}))), html_escape(kind), html_escape(c.chosen),
         format_metres(json_at(table, {c.chosen.c_str(), "mean_error_m"})));
   }
+  std::vector<std::string> names;
+  for (const auto& [name, row] : table.items())
+    names.push_back(name);
+  std::stable_sort(names.begin(), names.end(), [&](const std::string& a, const std::string& b) {
+    const double inf = std::numeric_limits<double>::infinity();
+    return number_or(json_at(table[a], {score_key}), inf) <
+           number_or(json_at(table[b], {score_key}), inf);
+  });
   std::string rows;
-  for (const auto& [name, row] : table.items()) {
+  for (const std::string& name : names) {
+    const json& row = table[name];
     rows += fmt::format(
         "<tr{}><td>{}</td><td>{}</td><td>{}</td>{}<td>{}</td></tr>\n",
         name == c.chosen ? " class=\"chosen\"" : "", html_escape(name),
@@ -205,13 +214,6 @@ std::string summary_section(const ReportContext& c) {
                               format_percent(json_at(match, {"on_walls"}))));
   }
   std::string notes;
-  const json& list = json_at(m, {"localization", "notes"});
-  if (list.is_array() && !list.empty()) {
-    notes += "<ul class=\"notes\">\n";
-    for (const json& note : list)
-      notes += fmt::format("<li>{}</li>\n", html_escape(text_of(note)));
-    notes += "</ul>\n";
-  }
   for (const std::string& name : c.models) {
     const json& failure = json_at(m, {"models", name.c_str(), "failure"});
     if (failure.is_string()) {
@@ -302,7 +304,9 @@ std::string histogram_section(const ReportContext& c) {
       "How the error against the truth spreads over the domain's points: mass near zero is "
       "good, mass in the last bin (1.0 m and more) is where a model fails. Click a legend entry "
       "to hide a model.",
-      "<div class=\"chart\" id=\"chart-histogram\"></div>\n<details><summary>Points per bin"
+      "<div class=\"chart\" id=\"chart-histogram\"></div>\n<p class=\"muted\">The same "
+      "counts added up: the share of points within each error (higher is better).</p>\n"
+      "<div class=\"chart\" id=\"chart-cumulative\"></div>\n<details><summary>Points per bin"
       "</summary>\n<table class=\"numbers\">\n<thead><tr>" +
           head + "</tr></thead>\n<tbody>\n" + rows + "</tbody>\n</table>\n</details>\n");
 }
@@ -329,8 +333,14 @@ std::string pairs_section(const ReportContext& c) {
     double total = number_or(json_at(pairs, {"count"}), 0.0);
     for (const auto& [reason, count] : rejected.items())
       total += number_or(count, 0.0);
+    std::vector<std::pair<std::string, json>> reasons;
+    for (const auto& [reason, count] : rejected.items())
+      reasons.emplace_back(reason, count);
+    std::stable_sort(reasons.begin(), reasons.end(), [](const auto& a, const auto& b) {
+      return number_or(a.second, 0.0) > number_or(b.second, 0.0);
+    });
     std::string rows;
-    for (const auto& [reason, count] : rejected.items()) {
+    for (const auto& [reason, count] : reasons) {
       const double share = total > 0 ? number_or(count, 0.0) / total : 0.0;
       rows += fmt::format(
           "<tr><td>{}</td><td>{}</td><td class=\"bar-cell\"><span class=\"bar\" "
@@ -371,6 +381,13 @@ std::string localization_section(const ReportContext& c) {
         html_escape(text_of(json_at(restarts, {"from_plan"}))));
   }
   body += "</p>\n";
+  const json& list = json_at(l, {"notes"});
+  if (list.is_array() && !list.empty()) {
+    body += "<details><summary>What the localization did</summary>\n<ul class=\"notes\">\n";
+    for (const json& note : list)
+      body += fmt::format("<li>{}</li>\n", html_escape(text_of(note)));
+    body += "</ul>\n</details>\n";
+  }
   if (c.track.scans > 0) {
     body +=
         "<div class=\"chart\" id=\"chart-localization\"></div>\n"
@@ -517,10 +534,11 @@ std::string dataset_section(const ReportContext& c) {
   row("scans in the run", format_count(json_at(m, {"pairs", "scans"})));
   const json& units = json_at(m, {"floorplan_units"});
   if (units.is_object()) {
-    std::string value;
-    for (const auto& [key, v] : units.items())
-      value += fmt::format("{}: {}; ", html_escape(key), html_escape(text_of(v)));
-    row("plan units", value);
+    row("plan units", fmt::format("{} ({} confidence, from the {}): {}",
+                                  html_escape(text_of(json_at(units, {"unit"}))),
+                                  html_escape(text_of(json_at(units, {"confidence"}))),
+                                  html_escape(text_of(json_at(units, {"source"}))),
+                                  html_escape(text_of(json_at(units, {"reason"})))));
   }
   row("plan scale",
       format_ratio(json_at(m, {"plan_scale"})) +

@@ -63,7 +63,8 @@ try {
                     'overlays', 'back-and-forth', 'timings', 'dataset']) {
     check(await page.locator(`section#${id}`).count() === 1, `section #${id} present`);
   }
-  for (const id of ['chart-histogram', 'chart-localization', 'chart-scan-pairs']) {
+  for (const id of ['chart-histogram', 'chart-cumulative', 'chart-localization',
+                  'chart-scan-pairs']) {
     const size = await page.evaluate((chartId) => {
       const canvas = document.querySelector(`#${chartId} canvas`);
       return canvas ? [canvas.width, canvas.height] : [0, 0];
@@ -79,7 +80,9 @@ try {
   fs.mkdirSync(screenshotDir, { recursive: true });
   await page.screenshot({ path: path.join(screenshotDir, 'report-top.png') });
   await page.screenshot({ path: path.join(screenshotDir, 'report-full.png'), fullPage: true });
-  for (const id of ['models', 'histograms', 'localization', 'overlays']) {
+  // The sticky header would cover the sections' own screenshots.
+  await page.evaluate(() => { document.querySelector('header').style.position = 'static'; });
+  for (const id of ['summary', 'models', 'histograms', 'pairs', 'localization', 'overlays']) {
     await page.locator(`section#${id}`).screenshot({
       path: path.join(screenshotDir, `report-${id}.png`) });
   }
