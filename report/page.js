@@ -64,7 +64,8 @@
       axes: [
         { label: cumulative ? 'error against the truth (m)'
                             : 'error against the truth (m); the last bin is 1.0 m and more',
-          values: (u, splits) => splits.map((v) => v.toFixed(2)) },
+          // Ticks on the bins' edges (0.05 m), never between them.
+          incrs: [0.05, 0.1, 0.25, 0.5], values: (u, splits) => splits.map((v) => v.toFixed(2)) },
         { label: cumulative ? 'points within (%)' : 'share of points (%)', size: 60 },
       ],
     }, columns);
