@@ -32,7 +32,7 @@ demo: build
 	@if [ -d "$(DATA)" ]; then \
 	  ./$(BUILD_DIR)/floorgrid info $(DATA)/bonn/GMap/GMap.yaml; \
 	else echo "demo: $(DATA) is missing: no real files to show"; fi
-	@echo "demo: results in $(DEMO_OUT)/align (metrics.json, model.json, overlays/)"
+	@echo "demo: results in $(DEMO_OUT)/align (report.html, metrics.json, model.json, overlays/)"
 
 test: build
 	ctest --test-dir $(BUILD_DIR) --output-on-failure -j $(JOBS)

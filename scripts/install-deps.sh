@@ -25,6 +25,8 @@ packages=(
   # the independent MCAP writer (tests/bags/write_mcap.mjs) runs on Node; its npm packages are
   # pinned by tests/bags/package-lock.json and installed below (this image's nodejs brings npm)
   nodejs
+  # the browser test of report.html (test tool only, driven by report/node_modules/playwright-core)
+  chromium
   # make fuzz: libFuzzer from clang-16 (clang-14 cannot compile libstdc++ 12's <ranges>)
   clang-16 libclang-rt-16-dev
 )
@@ -49,9 +51,24 @@ install_bag_writers() {
     echo "install-deps: npm ci failed: the MCAP writer tests will be skipped" >&2
 }
 
+# npm packages of the report (uPlot, embedded into report.html at build time: the configure
+# fails without it) and its browser test (playwright-core; never a browser download), installed
+# once from report/package-lock.json.
+install_report_packages() {
+  local report
+  report="$(cd "$(dirname "$0")/.." && pwd)/report"
+  if [ -d "$report/node_modules/uplot" ] && [ -d "$report/node_modules/playwright-core" ]; then
+    return 0
+  fi
+  echo "install-deps: npm ci in report (uPlot for report.html, playwright-core for its test)"
+  PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD=1 npm ci --prefix "$report" --no-audit --no-fund \
+    --loglevel=error
+}
+
 if [ ${#missing[@]} -eq 0 ]; then
   echo "install-deps: all ${#packages[@]} packages present"
   install_bag_writers
+  install_report_packages
   exit 0
 fi
 
@@ -66,3 +83,4 @@ export DEBIAN_FRONTEND=noninteractive
 apt-get update -qq
 apt-get install -y -qq --no-install-recommends "${missing[@]}"
 install_bag_writers
+install_report_packages

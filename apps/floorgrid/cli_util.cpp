@@ -2,12 +2,15 @@
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+#include <spdlog/spdlog.h>
 
 #include <charconv>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 
 #include "floorgrid/core/error.hpp"
+#include "floorgrid/io/report_html.hpp"
 
 namespace floorgrid::app {
 
@@ -52,6 +55,18 @@ void refuse_overwriting_input(const std::string& input, const std::string& outpu
   if (!error && a == b) {
     throw InputError(fmt::format("'{}' is also the input: it would be overwritten", output), {}, 0,
                      option);
+  }
+}
+
+void write_report(const std::filesystem::path& out) {
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    const std::filesystem::path report = io::write_report_html(out);
+    fmt::print("report      {} ({:.2f} s; open it in a browser, it needs no network)\n",
+               report.string(),
+               std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  } catch (const std::exception& e) {
+    spdlog::warn("report.html not written: {}", e.what());
   }
 }
 

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -19,5 +20,9 @@ Pose2 parse_pose(const std::string& text, const std::string& option);
 /// InputError naming `option`.
 void refuse_overwriting_input(const std::string& input, const std::string& output,
                               const std::string& option);
+
+/// Writes report.html from `out`'s files and says where it is; a failure costs the report (a
+/// warning), not the job.
+void write_report(const std::filesystem::path& out);
 
 }  // namespace floorgrid::app

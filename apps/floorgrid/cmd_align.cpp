@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "apps/floorgrid/cli_util.hpp"
 #include "apps/floorgrid/commands.hpp"
 #include "apps/floorgrid/dataset_run.hpp"
 #include "apps/floorgrid/job_options.hpp"
@@ -16,6 +17,7 @@
 #include "floorgrid/io/dataset_loader.hpp"
 #include "floorgrid/io/export_bundle.hpp"
 #include "floorgrid/io/export_inputs.hpp"
+#include "floorgrid/io/report_html.hpp"
 
 namespace floorgrid::app {
 
@@ -100,10 +102,16 @@ void run_align(const std::string& dataset, const std::string& out, const JobOpti
   fmt::print("\nwrote {} files to {} (metrics.json, model.json, overlays/)\n", files.files.size(),
              files.folder.string());
   // What was learnt is written (metrics.json holds the localization's story), but a run that
-  // made no pairs is a failure, not a result.
-  require_pairs(a.localization, d);
-  require_plan_match(a.plan_match, d, options.align.localization.plan_location);
+  // made no pairs is a failure, not a result; its report still tells what happened.
+  try {
+    require_pairs(a.localization, d);
+    require_plan_match(a.plan_match, d, options.align.localization.plan_location);
+  } catch (...) {
+    write_report(out);
+    throw;
+  }
   write_align_exports(a, d, out);
+  write_report(out);
 }
 
 void add_align_command(CLI::App& root) {

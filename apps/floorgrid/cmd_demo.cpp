@@ -37,8 +37,8 @@ void add_demo_command(CLI::App& root) {
     run_align((out / "dataset").string(), (out / "align").string(), job_options(job));
     fmt::print(
         "\ndemo: the dataset is in {} (preview.png: the plan's walls through the exact "
-        "warp), the results in {} (overlays/ show the plan's walls through each model in "
-        "red, through the truth in green)\n",
+        "warp), the results in {} (report.html tells it all; overlays/ show the plan's walls "
+        "through each model in red, through the truth in green)\n",
         (out / "dataset").string(), (out / "align").string());
   });
 }

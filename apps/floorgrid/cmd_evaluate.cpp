@@ -5,6 +5,7 @@
 
 #include <chrono>
 
+#include "apps/floorgrid/cli_util.hpp"
 #include "apps/floorgrid/commands.hpp"
 #include "apps/floorgrid/dataset_run.hpp"
 #include "apps/floorgrid/job_options.hpp"
@@ -121,6 +122,7 @@ void run_evaluate(const std::string& dataset, const std::string& model_file, con
     heat_files += (heat_files.empty() ? "" : ", ") + file.generic_string();
   fmt::print("heat maps   {} in {:.2f} s\n", heat_files, heat_seconds);
   fmt::print("wrote       metrics.json, {}, heatmaps/ to {}\n", overlay_file.string(), out);
+  write_report(folder);
   if (!truth.plan_to_grid) {
     // The uncertainty map and the drift are written; the errors cannot be.
     throw InputError(

@@ -182,6 +182,15 @@ AlignmentFiles write_alignment(const Alignment& a, const AlignmentInputs& in,
   write_scans_csv(a.localization, in.log, folder / "scans.csv");
   files.files.emplace_back("scans.csv");
   const RgbImage background = grid_picture(in.gridmap);
+  {
+    // Where the pairs are: their gridmap endpoints in blue on the gridmap (the report shows it).
+    RgbImage picture = background;
+    draw_points(picture, in.gridmap.geometry(), a.localization.pairs.points_in_grid, {30, 90, 220},
+                0);
+    const std::filesystem::path pairs_picture = std::filesystem::path("overlays") / "pairs.png";
+    write_png_rgb(folder / pairs_picture, picture.width, picture.height, picture.rgb);
+    files.files.push_back(pairs_picture);
+  }
   const HeatMapDomain heat_domain = heat_map_domain(in, a.truth, a.domain.kind);
   timings.heat_maps = heat_domain.seconds;
   std::map<std::string, json> heat_maps;

@@ -44,8 +44,9 @@ struct AlignmentFiles {
 /// Writes the main job's results into `folder` (created when missing), each file atomically:
 /// pairs.csv, model-<name>.json per fitted model, model.json (the model `auto` chose),
 /// overlays/overlay-<name>.png (the plan's walls through each model, red, and through the truth
-/// when known, green, on the gridmap), heatmaps/heat-<name>.png and heatmaps/std-<name>.png
-/// (write_model_heat_maps) and metrics.json last. `timings.write` is filled in.
+/// when known, green, on the gridmap), overlays/pairs.png (the pairs' gridmap endpoints, blue, on
+/// the gridmap), heatmaps/heat-<name>.png and heatmaps/std-<name>.png (write_model_heat_maps)
+/// and metrics.json last. `timings.write` is filled in.
 AlignmentFiles write_alignment(const Alignment& alignment, const AlignmentInputs& inputs,
                                const std::string& dataset, const std::filesystem::path& folder,
                                AlignmentTimings& timings,

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "floorgrid/io/pairs_csv.hpp"
+#include "floorgrid/io/report_format.hpp"
 #include "floorgrid/io/truth_json.hpp"
 #include "tests/support/test_data.hpp"
 
@@ -78,6 +79,24 @@ TEST(AlignCommand, OfficeGivesAccuratePairsAndModelsAndEveryContractKey) {
   std::string header;
   std::getline(scans, header);
   EXPECT_EQ(header.rfind("scan,time,plan_x,plan_y,plan_theta,plan_state", 0), 0u) << header;
+
+  // report.html: a sample of metrics.json's numbers, as the report formats them.
+  const std::string report = test::read_file(dir / "out" / "report.html");
+  EXPECT_NE(report.find("<section id=\"summary\">"), std::string::npos);
+  const std::string chosen = m["chosen_model"].get<std::string>();
+  for (const std::string& expected :
+       {io::format_metres(m["models"][chosen]["mean_error_m"]),
+        io::format_metres(m["models"][chosen]["cv_error_m"]),
+        io::format_metres(m["models"]["gt"]["p95_error_m"]),
+        io::format_metres(m["models"]["tps"]["median_error_m"]),
+        io::format_metres(m["models"]["dt"]["back_and_forth"]["max_m"]),
+        io::format_count(m["pairs"]["count"]),
+        io::format_count(m["pairs"]["rejected"]["off_plan_wall"]),
+        io::format_percent(m["pairs"]["converged_fraction"]), io::format_ratio(m["plan_scale"]),
+        io::format_seconds(m["timings_s"]["localize"]), io::format_count(m["domain"]["points"])}) {
+    EXPECT_NE(report.find(expected), std::string::npos) << expected;
+  }
+  EXPECT_TRUE(fs::exists(dir / "out" / "overlays" / "pairs.png"));
 
   // Accuracy against the exact warp (issue: pairs median <= 5 cm, gt <= 10 cm).
   EXPECT_LE(m["pairs"]["error_median_m"].get<double>(), 0.05);

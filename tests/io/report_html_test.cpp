@@ -1,0 +1,192 @@
+// report.html from an output folder: self-contained (no network, pictures as data URLs), every
+// string from the data escaped, the numbers those of metrics.json as report_format writes them,
+// heat maps picked up when present, and a folder without the optional files still reported.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <regex>
+
+#include "floorgrid/core/error.hpp"
+#include "floorgrid/io/base64.hpp"
+#include "floorgrid/io/image_io.hpp"
+#include "floorgrid/io/report_format.hpp"
+#include "floorgrid/io/report_html.hpp"
+#include "tests/support/test_data.hpp"
+
+namespace floorgrid {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using test::TempDir;
+
+/// A small align result: two models with a truth, gt chosen, a hostile dataset name.
+json small_metrics() {
+  json histogram = json::array();
+  for (int i = 0; i < 21; ++i)
+    histogram.push_back(i < 3 ? 100 - 30 * i : 0);
+  return {{"format", "floorgrid-metrics"},
+          {"version", 1},
+          {"dataset", "<script>alert(\"x\")</script> & co"},
+          {"chosen_model", "gt"},
+          {"pairs",
+           {{"count", 12345},
+            {"scans", 40},
+            {"converged_fraction", 0.875},
+            {"converged_periods", 2},
+            {"error_median_m", 0.0312},
+            {"error_mean_m", 0.041},
+            {"error_p95_m", 0.12},
+            {"noise_rms_m", 0.02},
+            {"rejected", {{"not_converged", 321}, {"off_plan_wall", 4567}}}}},
+          {"plan_scale", 1.02134},
+          {"plan_scale_std", 0.00012},
+          {"plan_scale_estimated", true},
+          {"domain", {{"kind", "warp"}, {"points", 2500}}},
+          {"localization",
+           {{"grid_start_scan", 3},
+            {"plan_start_scan", 5},
+            {"longest_gap_scans", 7},
+            {"notes", {"a note with <b>markup</b>"}}}},
+          {"models",
+           {{"gt",
+             {{"mean_error_m", 0.0421},
+              {"median_error_m", 0.0333},
+              {"p95_error_m", 0.1188},
+              {"cv_error_m", 0.0567},
+              {"cv_kind", "blocked"},
+              {"fit_seconds", 0.061},
+              {"pairs_used", 12345},
+              {"error_histogram", histogram},
+              {"wall_distance_median_m", 0.05},
+              {"back_and_forth",
+               {{"min_m", 0.0},
+                {"mean_m", 1.2e-13},
+                {"max_m", 3.8e-13},
+                {"points", 2500},
+                {"not_invertible", 0}}}}},
+            {"tps",
+             {{"mean_error_m", 0.0612},
+              {"median_error_m", 0.0444},
+              {"p95_error_m", 0.2},
+              {"cv_error_m", 0.07},
+              {"fit_seconds", 0.24},
+              {"error_histogram", histogram},
+              {"back_and_forth", {{"min_m", 0.0}, {"mean_m", 1e-9}, {"max_m", 2e-9}}}}},
+            {"ct", {{"failure", "too few pairs <here>"}}}}},
+          {"timings_s",
+           {{"load", 0.5}, {"localize", 12.25}, {"fit", 3.0}, {"evaluate", 1.5}, {"write", 0.2}}}};
+}
+
+const char* kScansCsv =
+    "scan,time,plan_x,plan_y,plan_theta,plan_state,plan_converged,plan_fit,plan_scale,grid_x,"
+    "grid_y,grid_theta,grid_state,grid_converged,grid_fit,grid_scale,consistent,pairs\n"
+    "0,1.0,0,0,0,global,0,,1,0,0,0,global,0,,1,1,0\n"
+    "1,1.1,0,0,0,tracking,1,0.8,1,0,0,0,tracking,1,0.9,1,1,40\n"
+    "2,1.2,0,0,0,tracking,1,0.8,1,0,0,0,tracking,1,0.9,1,1,38\n";
+
+/// An output folder holding `metrics` and, when `full`, scans.csv, an overlay and a heat map.
+void write_folder(const fs::path& folder, const json& metrics, bool full) {
+  test::write_file(folder / "metrics.json", metrics.dump(1));
+  if (!full)
+    return;
+  test::write_file(folder / "scans.csv", kScansCsv);
+  fs::create_directories(folder / "overlays");
+  fs::create_directories(folder / "heatmaps");
+  io::write_png_rgb(folder / "overlays" / "overlay-gt.png", 2, 1, {255, 0, 0, 0, 255, 0});
+  io::write_png(folder / "heatmaps" / "heat-gt.png", 1, 1, {128});
+}
+
+TEST(ReportHtml, NumbersAreMetricsJsonsAsTheReportFormatsThem) {
+  TempDir dir;
+  const json m = small_metrics();
+  write_folder(dir.path(), m, true);
+  const std::string html = test::read_file(io::write_report_html(dir.path()));
+  const json& gt = m["models"]["gt"];
+  for (const std::string& expected :
+       {io::format_metres(gt["mean_error_m"]), io::format_metres(gt["median_error_m"]),
+        io::format_metres(gt["p95_error_m"]), io::format_metres(gt["cv_error_m"]),
+        io::format_metres(m["models"]["tps"]["mean_error_m"]),
+        io::format_metres(gt["back_and_forth"]["max_m"]), io::format_count(m["pairs"]["count"]),
+        io::format_count(m["pairs"]["rejected"]["off_plan_wall"]),
+        io::format_percent(m["pairs"]["converged_fraction"]), io::format_ratio(m["plan_scale"]),
+        io::format_ratio(m["plan_scale_std"]), io::format_seconds(m["timings_s"]["localize"]),
+        io::format_metres(m["pairs"]["error_median_m"])}) {
+    EXPECT_NE(html.find(expected), std::string::npos) << expected;
+  }
+  // The formats themselves: units, and tiny drifts by magnitude.
+  EXPECT_EQ(io::format_metres(0.0421), "0.042 m");
+  EXPECT_EQ(io::format_metres(3.8e-13), "3.8e-13 m");
+  EXPECT_EQ(io::format_percent(json(0.875)), "87.5%");
+  EXPECT_EQ(io::format_count(12345), "12\u202f345");
+  EXPECT_EQ(io::format_ratio(json(1.02134)), "1.0213");
+  EXPECT_EQ(io::format_seconds(12.25), "12.2 s");
+  EXPECT_EQ(io::format_metres(json(nullptr)), "n/a");
+}
+
+TEST(ReportHtml, IsSelfContainedAndEscapesTheData) {
+  TempDir dir;
+  write_folder(dir.path(), small_metrics(), true);
+  const std::string html = test::read_file(io::write_report_html(dir.path()));
+  // Every src= is a data: URL; no stylesheet or script is linked.
+  const std::regex src(R"(src\s*=\s*["']?([^"'\s>]*))");
+  int sources = 0;
+  for (auto it = std::sregex_iterator(html.begin(), html.end(), src); it != std::sregex_iterator();
+       ++it, ++sources) {
+    EXPECT_EQ((*it)[1].str().rfind("data:", 0), 0u) << (*it)[0].str();
+  }
+  EXPECT_EQ(sources, 2);  // the overlay and the heat map
+  EXPECT_EQ(html.find("<link"), std::string::npos);
+  EXPECT_EQ(html.find("<script src"), std::string::npos);
+  // No address but the credited chart library's (its own banner and the footer's credit).
+  const std::regex address(R"(https?://[^\s"'<>)]*)");
+  for (auto it = std::sregex_iterator(html.begin(), html.end(), address);
+       it != std::sregex_iterator(); ++it) {
+    EXPECT_EQ((*it)[0].str(), "https://github.com/leeoniya/uPlot") << (*it)[0].str();
+  }
+  EXPECT_NE(html.find("uPlot (MIT License"), std::string::npos);
+  // The data's strings are text, never markup.
+  EXPECT_EQ(html.find("<script>alert"), std::string::npos);
+  EXPECT_NE(html.find("&lt;script&gt;alert(&quot;x&quot;)&lt;/script&gt; &amp; co"),
+            std::string::npos);
+  EXPECT_NE(html.find("a note with &lt;b&gt;markup&lt;/b&gt;"), std::string::npos);
+  EXPECT_NE(html.find("too few pairs &lt;here&gt;"), std::string::npos);
+  // The chart data cannot end its <script> element early.
+  const std::size_t data = html.find("id=\"report-data\">");
+  ASSERT_NE(data, std::string::npos);
+  EXPECT_EQ(html.substr(data, html.find("</script>", data) - data).find("</"), std::string::npos);
+}
+
+TEST(ReportHtml, PicksUpHeatMapsAndOverlays) {
+  TempDir dir;
+  write_folder(dir.path(), small_metrics(), true);
+  const std::string html = test::read_file(io::write_report_html(dir.path()));
+  const std::string heat = io::base64_encode(test::read_file(dir / "heatmaps/heat-gt.png"));
+  EXPECT_NE(html.find("data:image/png;base64," + heat), std::string::npos);
+  EXPECT_NE(html.find("error against the truth, gt"), std::string::npos);
+  EXPECT_NE(html.find("id=\"chart-localization\""), std::string::npos);
+  EXPECT_EQ(html.find("No heat maps in this folder"), std::string::npos);
+}
+
+TEST(ReportHtml, AFolderWithOnlyMetricsIsReportedAndWithoutMetricsRefused) {
+  TempDir dir;
+  write_folder(dir.path(), small_metrics(), false);
+  const std::string html = test::read_file(io::write_report_html(dir.path()));
+  EXPECT_NE(html.find("No heat maps in this folder"), std::string::npos);
+  EXPECT_NE(html.find("No scans.csv in this folder"), std::string::npos);
+  TempDir empty;
+  EXPECT_THROW(io::write_report_html(empty.path()), InputError);
+  EXPECT_FALSE(fs::exists(empty / "report.html"));
+}
+
+TEST(Base64, EncodesRfc4648Vectors) {
+  EXPECT_EQ(io::base64_encode(""), "");
+  EXPECT_EQ(io::base64_encode("f"), "Zg==");
+  EXPECT_EQ(io::base64_encode("fo"), "Zm8=");
+  EXPECT_EQ(io::base64_encode("foo"), "Zm9v");
+  EXPECT_EQ(io::base64_encode("foobar"), "Zm9vYmFy");
+  EXPECT_EQ(io::base64_encode(std::string("\xff\x00\x10", 3)), "/wAQ");
+}
+
+}  // namespace
+}  // namespace floorgrid
