@@ -59,7 +59,7 @@ struct MappingCommonOptions {
   double max_error = 0.25;
   ReductionOptions reduction;         ///< pair budget of models that reduce their pairs
   std::size_t support_budget = 2000;  ///< pairs kept for confidence, hull and inverse start
-  double inverse_tolerance = 1e-9;    ///< Newton inverse: residual relative to the extent
+  double inverse_tolerance = 1e-11;   ///< Newton inverse: residual relative to the extent
   int inverse_max_iterations = 50;    ///< Newton inverse: steps at most
   std::uint64_t seed = 1;             ///< randomness of the fit (RANSAC, subsampling)
 };

@@ -60,6 +60,12 @@ TEST(AlignCommand, OfficeGivesAccuratePairsAndModelsAndEveryContractKey) {
     }
     for (const char* key : {"min_m", "mean_m", "max_m"})
       EXPECT_TRUE(j["back_and_forth"][key].is_number()) << model << ".back_and_forth." << key;
+    // There and back 100 times: the smooth models drift at most 1e-6 m (issue 13's bar; the
+    // Newton inverse stops at 1e-11 of the extent). dt and lc are piecewise: where their
+    // triangles fold, a point comes back elsewhere.
+    if (std::string(model) != "dt" && std::string(model) != "lc") {
+      EXPECT_LE(j["back_and_forth"]["max_m"].get<double>(), 1e-6) << model;
+    }
     // Which cross-validation cv_error_m is: spatially blocked by default; auto's is the runs
     // it compared the models by.
     EXPECT_EQ(j["cv_folds"], 5) << model;
