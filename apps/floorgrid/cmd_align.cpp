@@ -68,11 +68,7 @@ void run_align(const std::string& dataset, const std::string& out, const JobOpti
                                dataset_log(d),
                                start_poses(d),
                                d.manifest.floorplan_scale,
-                               d.truth_warp
-                                   ? GroundTruth([&warp = *d.truth_warp](const Eigen::Vector2d& p) {
-                                       return warp.plan_to_grid(p);
-                                     })
-                                   : GroundTruth{},
+                               warp_truth(d),
                                d.manual_pairs ? &*d.manual_pairs : nullptr};
   ProgressLine progress;
   const Alignment a = align(inputs, options.align, [&](const AlignmentProgress& p) {

@@ -48,11 +48,7 @@ void run_evaluate(const std::string& dataset, const std::string& model_file, con
                                d.log ? *d.log : no_log,
                                std::nullopt,
                                d.manifest.floorplan_scale,
-                               d.truth_warp
-                                   ? GroundTruth([&warp = *d.truth_warp](const Eigen::Vector2d& p) {
-                                       return warp.plan_to_grid(p);
-                                     })
-                                   : GroundTruth{},
+                               warp_truth(d),
                                d.manual_pairs ? &*d.manual_pairs : nullptr};
 
   // The same truth, domain and judge as align's.

@@ -20,6 +20,12 @@ void report_loading(const io::LoadedDataset& d) {
     spdlog::info("{}: {}", d.manifest.floorplan.string(), d.unit_decision->reason);
 }
 
+GroundTruth warp_truth(const io::LoadedDataset& dataset) {
+  if (!dataset.truth_warp)
+    return {};
+  return [&warp = *dataset.truth_warp](const Eigen::Vector2d& p) { return warp.plan_to_grid(p); };
+}
+
 const RobotLog& dataset_log(const io::LoadedDataset& dataset) {
   if (!dataset.log) {
     throw InputError("the dataset names no log: pairs need a robot run",

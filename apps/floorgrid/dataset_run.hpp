@@ -2,6 +2,7 @@
 
 #include <optional>
 
+#include "floorgrid/evaluation/model_evaluation.hpp"
 #include "floorgrid/io/dataset_loader.hpp"
 #include "floorgrid/pipeline/dual_localizer.hpp"
 #include "floorgrid/pipeline/plan_match.hpp"
@@ -17,6 +18,9 @@ std::optional<StartPoses> start_poses(const io::LoadedDataset& dataset);
 
 /// The dataset's log; InputError naming the manifest when it has none.
 const RobotLog& dataset_log(const io::LoadedDataset& dataset);
+
+/// The dataset's exact warp as a GroundTruth (plan to grid), or an empty one without it.
+GroundTruth warp_truth(const io::LoadedDataset& dataset);
 
 /// What the dual localization of a dataset works on (`dataset` must outlive it).
 DualLocalizerInputs dual_inputs(const io::LoadedDataset& dataset);

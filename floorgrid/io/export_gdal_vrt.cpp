@@ -8,6 +8,7 @@
 
 #include "floorgrid/core/error.hpp"
 #include "floorgrid/io/export_similarity.hpp"
+#include "floorgrid/io/report_format.hpp"
 
 namespace floorgrid::io {
 
@@ -76,32 +77,6 @@ RasterBands probe_bands(const std::filesystem::path& image) {
         image.string(), 0, "image");
   }
   throw InputError("not a PNG or binary PGM image", image.string(), 0, "image");
-}
-
-std::string xml_escaped(const std::string& text) {
-  std::string out;
-  for (const char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      case '\'':
-        out += "&apos;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
 }
 
 /// The image as the VRT names it: relative to the VRT's folder when the two share a root.
@@ -177,13 +152,13 @@ GdalVrt gdal_vrt(const PointMapping& model, const MapRaster& raster, VrtSource s
       "top-left corner of the top-left pixel) to {} metres through the {} model. Reproduced by "
       "GDAL's {} transformer: gdalwarp {} {} out.tif{} -->\n",
       from, to, exported_model(model).name(), vrt.exact ? "polynomial" : "thin-plate spline",
-      vrt.transformer, xml_escaped(vrt_path.filename().string()),
+      vrt.transformer, html_escape(vrt_path.filename().string()),
       vrt.exact ? " (exact)"
                 : ". The spline follows smooth models (tps, gp, gpgt) within about 1 cm and "
                   "smooths the kinks of piecewise ones (ct, dt, lc) between the GCPs");
   text += "  <Metadata>\n";
   text += fmt::format("    <MDI key=\"FLOORGRID_MODEL\">{}</MDI>\n",
-                      xml_escaped(exported_model(model).name()));
+                      html_escape(exported_model(model).name()));
   text +=
       fmt::format("    <MDI key=\"FLOORGRID_FRAMES\">{} image -&gt; {} metres</MDI>\n", from, to);
   text += fmt::format("    <MDI key=\"FLOORGRID_GDAL_TRANSFORMER\">{}</MDI>\n", vrt.transformer);
@@ -201,7 +176,7 @@ GdalVrt gdal_vrt(const PointMapping& model, const MapRaster& raster, VrtSource s
                         bands.colours[static_cast<std::size_t>(b - 1)]);
     text += "    <SimpleSource>\n";
     text += fmt::format("      <SourceFilename relativeToVRT=\"{}\">{}</SourceFilename>\n",
-                        relative ? 1 : 0, xml_escaped(filename));
+                        relative ? 1 : 0, html_escape(filename));
     text += fmt::format("      <SourceBand>{}</SourceBand>\n", b);
     text += fmt::format(
         "      <SrcRect xOff=\"0\" yOff=\"0\" xSize=\"{0}\" ySize=\"{1}\"/>\n"

@@ -9,7 +9,8 @@ namespace floorgrid::io {
 // How report.html writes text and numbers: one place, so that the page reads consistently and
 // a test can format a metrics.json value as the page does and find it there.
 
-/// `text` safe inside HTML text and double-quoted attributes (& < > " ' escaped).
+/// `text` safe inside HTML or XML text and double-quoted attributes (& < > " ' escaped; the
+/// report and the GDAL VRT use it).
 std::string html_escape(std::string_view text);
 
 /// A length: "0.042 m" (millimetres shown), "12.345 m", or "3.2e-10 m" below a millimetre (the
