@@ -105,6 +105,16 @@ std::string laser_scan(std::uint32_t seq, std::uint32_t sec, std::uint32_t nsec)
   return out;
 }
 
+/// `plain` as one LZ4 frame, in `packed` (returned).
+const std::string& lz4_frame(const std::string& plain, std::string& packed) {
+  LZ4F_preferences_t preferences{};
+  preferences.frameInfo.blockSizeID = LZ4F_max4MB;
+  packed.resize(LZ4F_compressFrameBound(plain.size(), &preferences));
+  packed.resize(
+      LZ4F_compressFrame(packed.data(), packed.size(), plain.data(), plain.size(), &preferences));
+  return packed;
+}
+
 /// Writes a bag of about `bytes` bytes; returns its path.
 fs::path write_bag(const std::string& compression, std::uint64_t bytes) {
   const fs::path path = bench_dir() / ("floorgrid-ros1-bench-" + compression + ".bag");
@@ -140,15 +150,7 @@ fs::path write_bag(const std::string& compression, std::uint64_t bytes) {
       ++seq;
       ++count;
     }
-    const std::string* data = &plain;
-    if (compression == "lz4") {
-      LZ4F_preferences_t preferences{};
-      preferences.frameInfo.blockSizeID = LZ4F_max4MB;
-      packed.resize(LZ4F_compressFrameBound(plain.size(), &preferences));
-      packed.resize(LZ4F_compressFrame(packed.data(), packed.size(), plain.data(), plain.size(),
-                                       &preferences));
-      data = &packed;
-    }
+    const std::string* data = compression == "lz4" ? &lz4_frame(plain, packed) : &plain;
     std::string header;
     field(header, "op", std::string(1, '\x05'));
     field(header, "compression", compression);
@@ -214,15 +216,7 @@ fs::path write_mcap(const std::string& compression, std::uint64_t bytes) {
                                                 static_cast<std::uint32_t>(ns % 1'000'000'000)));
       ++seq;
     }
-    const std::string* data = &plain;
-    if (compression == "lz4") {
-      LZ4F_preferences_t preferences{};
-      preferences.frameInfo.blockSizeID = LZ4F_max4MB;
-      packed.resize(LZ4F_compressFrameBound(plain.size(), &preferences));
-      packed.resize(LZ4F_compressFrame(packed.data(), packed.size(), plain.data(), plain.size(),
-                                       &preferences));
-      data = &packed;
-    }
+    const std::string* data = compression == "lz4" ? &lz4_frame(plain, packed) : &plain;
     const std::uint64_t last_ns = 1'000'000'000'000ULL + (seq - 1) * 25'000'000ULL;
     const std::string chunk = mcap_record(
         0x06, raw(first_ns) + raw(last_ns) + raw(static_cast<std::uint64_t>(plain.size())) +
