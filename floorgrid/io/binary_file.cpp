@@ -40,11 +40,15 @@ void BinaryFile::read(std::uint64_t offset, std::span<std::uint8_t> out, const s
                      name_);
   if (out.empty())
     return;
-  if (::fseeko(file_.get(), static_cast<off_t>(offset), SEEK_SET) != 0 ||
-      std::fread(out.data(), 1, out.size(), file_.get()) != out.size())
+  // Sequential reads (a record's length, then its header, then its data) keep stdio's buffer.
+  if ((offset != position_ && ::fseeko(file_.get(), static_cast<off_t>(offset), SEEK_SET) != 0) ||
+      std::fread(out.data(), 1, out.size(), file_.get()) != out.size()) {
+    position_ = ~std::uint64_t{0};
     throw InputError("at byte " + std::to_string(offset) + ": cannot read " + what +
                          " (read error or the file shrank)",
                      name_);
+  }
+  position_ = offset + out.size();
 }
 
 }  // namespace floorgrid::io

@@ -35,6 +35,7 @@ class BinaryFile {
   std::string name_;
   std::unique_ptr<std::FILE, int (*)(std::FILE*)> file_;
   std::uint64_t size_ = 0;
+  std::uint64_t position_ = ~std::uint64_t{0};  // where the stream stands: seek only when needed
 };
 
 }  // namespace floorgrid::io

@@ -1,6 +1,6 @@
 #include "floorgrid/io/ros1_bag_file.hpp"
 
-#include <system_error>
+#include <algorithm>
 
 #include "floorgrid/core/error.hpp"
 
@@ -20,14 +20,9 @@ std::string printable(std::span<const std::uint8_t> bytes) {
 
 }  // namespace
 
-BagFile::BagFile(const std::filesystem::path& path)
-    : name_(path.string()), in_(path, std::ios::binary) {
-  std::error_code error;
-  size_ = std::filesystem::file_size(path, error);
-  if (!in_ || error || std::filesystem::is_directory(path))
-    throw InputError("cannot open the ROS 1 bag", name_);
-  std::vector<std::uint8_t> magic(std::min<std::uint64_t>(size_, kMagic.size()));
-  read_at(0, magic.data(), magic.size());
+BagFile::BagFile(const std::filesystem::path& path) : file_(path) {
+  std::vector<std::uint8_t> magic(std::min<std::uint64_t>(size(), kMagic.size()));
+  file_.read(0, magic, "the magic");
   if (magic.size() < kMagic.size() ||
       std::string_view(reinterpret_cast<const char*>(magic.data()), magic.size()) != kMagic)
     fail(0, "not a ROS 1 bag of format 2.0: it starts with '" + printable(magic) +
@@ -41,22 +36,9 @@ BagFile::BagFile(const std::filesystem::path& path)
   first_record_ = bag_header.end();
 }
 
-void BagFile::read_at(std::uint64_t offset, std::uint8_t* out, std::size_t count) {
-  if (offset != position_) {
-    in_.clear();
-    in_.seekg(static_cast<std::streamoff>(offset));
-  }
-  in_.read(reinterpret_cast<char*>(out), static_cast<std::streamsize>(count));
-  if (static_cast<std::size_t>(in_.gcount()) != count) {
-    position_ = ~std::uint64_t{0};
-    fail(offset, "cannot read " + std::to_string(count) + " bytes (the file changed while read?)");
-  }
-  position_ = offset + count;
-}
-
 std::uint32_t BagFile::read_u32_at(std::uint64_t offset) {
   std::uint8_t raw[4];
-  read_at(offset, raw, 4);
+  file_.read(offset, raw, "a length");
   return static_cast<std::uint32_t>(raw[0]) | static_cast<std::uint32_t>(raw[1]) << 8 |
          static_cast<std::uint32_t>(raw[2]) << 16 | static_cast<std::uint32_t>(raw[3]) << 24;
 }
@@ -67,7 +49,7 @@ const Record& BagFile::read_record(std::uint64_t offset) {
   r.data_offset = offset;
   r.data_len = 0;
   r.truncated.clear();
-  const std::uint64_t left = offset <= size_ ? size_ - offset : 0;
+  const std::uint64_t left = offset <= size() ? size() - offset : 0;
   if (left < 4) {
     r.truncated = "the file ends inside the record there: its header length needs 4 bytes but " +
                   std::to_string(left) + " remain";
@@ -85,15 +67,14 @@ const Record& BagFile::read_record(std::uint64_t offset) {
                   std::to_string(left) + " remain";
     return r;
   }
-  header_bytes_.resize(header_len);
-  read_at(offset + 4, header_bytes_.data(), header_len);
-  r.header.parse(header_bytes_, name_, offset + 4);
+  file_.read(offset + 4, header_len, header_bytes_, "a record header");
+  r.header.parse(header_bytes_, name(), offset + 4);
   r.data_len = read_u32_at(offset + 4 + header_len);
   r.data_offset = offset + 8 + header_len;
-  if (r.data_len > size_ - r.data_offset)
+  if (r.data_len > size() - r.data_offset)
     r.truncated = "the file ends inside the record there: its data of " +
                   std::to_string(r.data_len) + " bytes runs past the end of the file (" +
-                  std::to_string(size_ - r.data_offset) + " bytes remain)";
+                  std::to_string(size() - r.data_offset) + " bytes remain)";
   return r;
 }
 
@@ -108,13 +89,12 @@ std::span<const std::uint8_t> BagFile::read_data(std::vector<std::uint8_t>& buff
   // read_record checked that the data lies within the file before this allocates for it.
   if (!record_.truncated.empty())
     fail(record_.offset, record_.truncated + " (truncated or corrupt)");
-  buffer.resize(record_.data_len);
-  read_at(record_.data_offset, buffer.data(), buffer.size());
+  file_.read(record_.data_offset, record_.data_len, buffer, "a record's data");
   return buffer;
 }
 
 void BagFile::fail(std::uint64_t offset, const std::string& message) const {
-  throw InputError("at byte " + std::to_string(offset) + ": " + message, name_);
+  throw InputError("at byte " + std::to_string(offset) + ": " + message, name());
 }
 
 }  // namespace floorgrid::io::ros1

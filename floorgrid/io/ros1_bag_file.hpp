@@ -2,11 +2,11 @@
 
 #include <cstdint>
 #include <filesystem>
-#include <fstream>
 #include <span>
 #include <string>
 #include <vector>
 
+#include "floorgrid/io/binary_file.hpp"
 #include "floorgrid/io/ros1_bag_records.hpp"
 
 namespace floorgrid::io::ros1 {
@@ -34,9 +34,9 @@ class BagFile {
   explicit BagFile(const std::filesystem::path& path);
 
   /// The file's name as errors state it.
-  const std::string& name() const { return name_; }
+  const std::string& name() const { return file_.name(); }
   /// Its size in bytes.
-  std::uint64_t size() const { return size_; }
+  std::uint64_t size() const { return file_.size(); }
   /// The bag header's index_pos: offset of the index section, 0 when it was never written.
   std::uint64_t index_pos() const { return index_pos_; }
   /// The bag header's conn_count.
@@ -59,13 +59,9 @@ class BagFile {
   [[noreturn]] void fail(std::uint64_t offset, const std::string& message) const;
 
  private:
-  void read_at(std::uint64_t offset, std::uint8_t* out, std::size_t count);
   std::uint32_t read_u32_at(std::uint64_t offset);
 
-  std::string name_;
-  std::ifstream in_;
-  std::uint64_t size_ = 0;
-  std::uint64_t position_ = 0;  // where in_ stands, to seek only when needed
+  BinaryFile file_;
   std::uint64_t index_pos_ = 0;
   std::uint32_t conn_count_ = 0;
   std::uint32_t chunk_count_ = 0;
