@@ -201,41 +201,29 @@ BagLog read_bag_log(const std::filesystem::path& path, const BagLogOptions& opti
         const PayloadSource source{file, message.offset, topic.topic};
         MessageTypeCount& count = counts[topic.topic];
         ++count.lines;
-        switch (ros_message_kind(topic.type)) {
-          case RosMessageKind::laser_scan: {
-            if (topic.topic != log.scan_topic)
-              break;
-            RosLaserScan s = decode_laser_scan(message.data, topic.encoding, source);
-            if (s.header.stamp_ns == 0)
-              s.header.stamp_ns = message.log_time_ns;
-            scans.push_back({std::move(s), count.lines});
-            return;
+        // Only the scan topic, the odometry topic and the TF topics were asked for.
+        if (topic.topic == log.scan_topic) {
+          RosLaserScan s = decode_laser_scan(message.data, topic.encoding, source);
+          if (s.header.stamp_ns == 0)
+            s.header.stamp_ns = message.log_time_ns;
+          scans.push_back({std::move(s), count.lines});
+        } else if (odom_topic && topic.topic == *odom_topic) {
+          RosOdometry o = decode_odometry(message.data, topic.encoding, source);
+          if (o.header.stamp_ns == 0)
+            o.header.stamp_ns = message.log_time_ns;
+          odometry.push_back(std::move(o));
+          ++count.kept;
+        } else {
+          const bool is_static = topic.topic.find("static") != std::string::npos;
+          for (RosTransform& t : decode_tf_message(message.data, topic.encoding, source)) {
+            if (t.header.stamp_ns == 0)
+              t.header.stamp_ns = message.log_time_ns;
+            t.header.frame_id = strip_slash(t.header.frame_id);
+            t.child_frame_id = strip_slash(t.child_frame_id);
+            transforms.emplace_back(std::move(t), is_static);
           }
-          case RosMessageKind::odometry: {
-            if (!odom_topic || topic.topic != *odom_topic)
-              break;
-            RosOdometry o = decode_odometry(message.data, topic.encoding, source);
-            if (o.header.stamp_ns == 0)
-              o.header.stamp_ns = message.log_time_ns;
-            odometry.push_back(std::move(o));
-            return;
-          }
-          case RosMessageKind::tf: {
-            const bool is_static = topic.topic.find("static") != std::string::npos;
-            for (RosTransform& t : decode_tf_message(message.data, topic.encoding, source)) {
-              if (t.header.stamp_ns == 0)
-                t.header.stamp_ns = message.log_time_ns;
-              t.header.frame_id = strip_slash(t.header.frame_id);
-              t.child_frame_id = strip_slash(t.child_frame_id);
-              transforms.emplace_back(std::move(t), is_static);
-            }
-            ++count.not_data;
-            return;
-          }
-          case RosMessageKind::other:
-            break;
+          ++count.not_data;  // transforms place the laser and may carry odometry: not scans
         }
-        ++count.not_data;
       },
       &wanted);
   // Messages are in file order; scans are used in the order of their stamps.
@@ -385,10 +373,7 @@ BagLog read_bag_log(const std::filesystem::path& path, const BagLogOptions& opti
     ++log.summary.beams_per_scan[scan.ranges.size()];
     log.scans.push_back(std::move(scan));
   }
-  for (auto& [topic, count] : counts)
-    if (odom_topic && topic == *odom_topic)
-      count.kept = count.lines;
-  log.summary.messages = counts;
+  log.summary.messages = std::move(counts);
   if (outside > 0)
     log.summary.warnings.push_back(
         fmt::format("{} of {} scans lie outside the odometry's time span and were skipped", outside,

@@ -177,9 +177,8 @@ json describe_carmen_log(const std::filesystem::path& path, const LaserSettings&
   return run_json(log, log.summary);
 }
 
-json describe_bag(const std::filesystem::path& path, BagFormat format,
-                  const BagLogOptions& options) {
-  const BagContents contents = bag_contents(path);
+/// A bag's topics as `info` lists them: type, encoding, count and rate.
+json topics_json(const BagContents& contents) {
   json topics = json::array();
   for (const BagTopic& t : contents.topics) {
     const double span = static_cast<double>(t.last_ns - t.first_ns) * 1e-9;
@@ -191,24 +190,37 @@ json describe_bag(const std::filesystem::path& path, BagFormat format,
          {"rate_hz", span > 0.0 && t.messages > 1 ? json(static_cast<double>(t.messages - 1) / span)
                                                   : json(nullptr)}});
   }
+  return topics;
+}
+
+json describe_bag(const std::filesystem::path& path, BagFormat format,
+                  const BagLogOptions& options) {
+  // The run, with the contents it read them from; a bag that cannot be read as a run (no scan
+  // topic it can tell, say) is still described, from its contents alone.
+  std::optional<BagLog> log;
+  std::string run_error;
+  try {
+    log = read_bag_log(path, options);
+  } catch (const InputError& e) {
+    run_error = e.what();
+  }
+  const BagContents contents = log ? log->contents : bag_contents(path);
   json j = {{"format", to_string(format)},
-            {"topics", topics},
+            {"topics", topics_json(contents)},
             {"bag_messages", contents.messages},
             {"bag_duration_s", static_cast<double>(contents.end_ns - contents.start_ns) * 1e-9},
             {"bag_warnings", contents.warnings}};
-  // The run needs a scan topic it can tell: a bag it cannot read as one is still described.
-  try {
-    const BagLog log = read_bag_log(path, options);
-    j.update(run_json(log, log.summary));
-    j["unknown_types"] = json::array();  // a bag's topics are listed above, by type
-    j["scan_topic"] = log.scan_topic;
-    j["odometry_source"] = log.odometry_source;
-    j["laser_frame"] = log.laser_frame;
-    j["laser_mount"] = {log.laser_mount.x, log.laser_mount.y, log.laser_mount.theta};
-    j["laser_upside_down"] = log.laser_upside_down;
-  } catch (const InputError& e) {
-    j["run_error"] = e.what();
+  if (!log) {
+    j["run_error"] = run_error;
+    return j;
   }
+  j.update(run_json(*log, log->summary));
+  j["unknown_types"] = json::array();  // a bag's topics are listed above, by type
+  j["scan_topic"] = log->scan_topic;
+  j["odometry_source"] = log->odometry_source;
+  j["laser_frame"] = log->laser_frame;
+  j["laser_mount"] = {log->laser_mount.x, log->laser_mount.y, log->laser_mount.theta};
+  j["laser_upside_down"] = log->laser_upside_down;
   return j;
 }
 
