@@ -200,12 +200,14 @@ LoadedDataset load_dataset(const std::filesystem::path& path, const PlanRasterOp
     LoadedMap plan = read_map(m.floorplan, m.floorplan_resolution, m.floorplan_origin, "floorplan");
     require_walls(plan, "floorplan");
     d.warnings.insert(d.warnings.end(), plan.warnings.begin(), plan.warnings.end());
+    d.plan_raster = MapRaster{plan.image_path, plan.grid.geometry()};
     d.plan_grid = std::move(plan.grid);
     d.plan_wall_samples = occupied_cell_centres(d.plan_grid);
   }
   LoadedMap grid = read_map(m.gridmap, m.gridmap_resolution, m.gridmap_origin, "gridmap");
   require_walls(grid, "gridmap");
   d.warnings.insert(d.warnings.end(), grid.warnings.begin(), grid.warnings.end());
+  d.gridmap_raster = MapRaster{grid.image_path, grid.grid.geometry()};
   d.gridmap = std::move(grid.grid);
   crop_large_map(d.gridmap, "gridmap " + m.gridmap.string(), limits, d.warnings);
   if (dxf) {

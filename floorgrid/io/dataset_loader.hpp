@@ -8,6 +8,7 @@
 #include "floorgrid/geometry/reference_pairs.hpp"
 #include "floorgrid/io/dataset_manifest.hpp"
 #include "floorgrid/io/dxf_reader.hpp"
+#include "floorgrid/io/map_io.hpp"
 #include "floorgrid/maps/occupancy_grid.hpp"
 #include "floorgrid/maps/vector_floorplan.hpp"
 #include "floorgrid/pipeline/plan_unit_fit.hpp"
@@ -45,6 +46,8 @@ struct LoadedDataset {
   std::optional<PlanUnitDecision> unit_decision;
   Eigen::Matrix2Xd plan_wall_samples;          ///< plan wall points every ~5 cm (plan metres)
   OccupancyGrid gridmap;                       ///< the robot's map
+  MapRaster gridmap_raster;                    ///< its image file, uncropped (for exports)
+  std::optional<MapRaster> plan_raster;        ///< a raster plan's image file, uncropped
   std::optional<RobotLog> log;                 ///< the run, odometry noise added when asked
   std::optional<PlanTruth> truth_warp;         ///< a simulator's exact plan -> grid truth
   std::optional<ReferencePairs> manual_pairs;  ///< hand-picked truth pairs (metres)

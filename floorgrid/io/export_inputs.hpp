@@ -7,9 +7,10 @@
 
 namespace floorgrid::io {
 
-/// The maps of a loaded dataset as the exports need them: the gridmap and a raster plan read
-/// again from their files, uncropped (the exports refer to the files' own pixels), and a DXF
-/// plan's geometry as loading converted it (the units the model's plan metres are in).
+/// The maps of a loaded dataset as the exports need them: the gridmap's and a raster plan's
+/// image files with their uncropped geometry, as loading recorded them (the exports refer to
+/// the files' own pixels), a raster plan's cells, and a DXF plan's geometry as loading converted
+/// it (the units the model's plan metres are in). Reads no file.
 ExportMaps export_maps(const LoadedDataset& dataset);
 
 }  // namespace floorgrid::io

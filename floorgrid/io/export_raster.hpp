@@ -4,17 +4,11 @@
 #include <filesystem>
 #include <optional>
 
+#include "floorgrid/io/map_io.hpp"
 #include "floorgrid/maps/occupancy_grid.hpp"
 #include "floorgrid/maps/vector_floorplan.hpp"
 
 namespace floorgrid::io {
-
-/// A map image on disk and where it lies in its frame (the map YAML's resolution, origin and
-/// the image's size), uncropped: what the exports refer to.
-struct MapRaster {
-  std::filesystem::path image;  ///< the image file (PGM or PNG)
-  GridGeometry geometry;        ///< width x height pixels, resolution and origin of the YAML
-};
 
 /// Image coordinates as GDAL counts them (pixel, line): (0, 0) is the top-left corner of the
 /// top-left pixel, x right, y down; a pixel's centre is at (col + 0.5, row + 0.5). The map YAML's

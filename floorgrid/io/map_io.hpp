@@ -32,6 +32,13 @@ struct MapMetadata {
 };
 
 /// A map read from disk: the grid and where it came from.
+/// A map image on disk and where it lies in its frame (the map YAML's resolution, origin and
+/// the image's size), uncropped: what the exports refer to.
+struct MapRaster {
+  std::filesystem::path image;  ///< the image file (PGM or PNG)
+  GridGeometry geometry;        ///< width x height pixels, resolution and origin of the YAML
+};
+
 struct LoadedMap {
   OccupancyGrid grid;                 ///< cells, frame from the metadata
   MapMetadata metadata;               ///< the YAML's fields (or the bare image's settings)
