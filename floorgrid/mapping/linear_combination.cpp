@@ -1,8 +1,11 @@
 #include "floorgrid/mapping/linear_combination.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <map>
 #include <numbers>
 
 #include "floorgrid/core/error.hpp"
@@ -23,16 +26,20 @@ LinearCombinationMapping::LinearCombinationMapping(MappingCommonOptions common,
   min_sin_angle_ = std::sin(options_.min_angle_deg * std::numbers::pi / 180.0);
 }
 
-void LinearCombinationMapping::prepare(const ReferencePairs& pairs) {
+void LinearCombinationMapping::prepare(const ReferencePairs& pairs, double cell_m) {
   pairs_ = pairs;
   plan_index_ = PointIndex2D(pairs_.points_in_plan);
+  build_cells(cell_m);
 }
 
 void LinearCombinationMapping::fit_model(const ReferencePairs& pairs, FitSummary& summary) {
-  prepare(pairs);
+  prepare(pairs, 0.0);
   summary.rms_m = 0.0;  // an interpolating model: every used pair maps exactly
   summary.details = {{"neighbours", options_.neighbours},
-                     {"min_angle_deg", options_.min_angle_deg}};
+                     {"min_angle_deg", options_.min_angle_deg},
+                     {"cell_m", cells_.spacing},
+                     {"cells", cell_piece_.size()},
+                     {"triangles", pieces_.size()}};
 }
 
 namespace {
@@ -103,6 +110,11 @@ Eigen::Matrix2Xd LinearCombinationMapping::forward_batch(
 
 void LinearCombinationMapping::affine(const Triangle& t, Eigen::Matrix2d& A,
                                       Eigen::Vector2d& offset) const {
+  if (!t.valid()) {
+    A = support_similarity().topLeftCorner<2, 2>();
+    offset = support_similarity().topRightCorner<2, 1>();
+    return;
+  }
   const auto& P = pairs_.points_in_plan;
   const auto& G = pairs_.points_in_grid;
   Eigen::Matrix2d R, S;
@@ -113,80 +125,169 @@ void LinearCombinationMapping::affine(const Triangle& t, Eigen::Matrix2d& A,
   offset = G.col(t.a) - A * P.col(t.a);
 }
 
-Eigen::Vector2d LinearCombinationMapping::forward(const Eigen::Vector2d& p) const {
-  const Triangle t = choose(p);
-  if (!t.valid()) {
-    const Eigen::Matrix3d& T = support_similarity();
-    return T.topLeftCorner<2, 2>() * p + T.topRightCorner<2, 1>();
+void LinearCombinationMapping::build_cells(double cell_m) {
+  pieces_.clear();
+  cell_piece_.clear();
+  cells_ = PlanLattice{};
+  cell_images_ = GridBoxIndex{};
+  if (cell_m < 0.0)
+    return;  // no cells: every point chooses its own triangle
+  Eigen::AlignedBox2d box;
+  for (Eigen::Index i = 0; i < pairs_.points_in_plan.cols(); ++i)
+    box.extend(Eigen::Vector2d(pairs_.points_in_plan.col(i)));
+  const double margin = common().extrapolation_distance;
+  if (cell_m > 0.0 && ((box.sizes().x() + 2.0 * margin) / cell_m + 2.0) *
+                              ((box.sizes().y() + 2.0 * margin) / cell_m + 2.0) >
+                          4e6) {
+    throw InputError("cells of " + std::to_string(cell_m) + " m over this box are more than 4e6",
+                     {}, 0, "parameters.cell_m");
   }
+  cells_ = cell_m > 0.0 ? PlanLattice::over(box, margin, cell_m, SIZE_MAX)
+                        : PlanLattice::over(box, margin, 0.1, 250'000);
+  const int columns = cells_.columns - 1, rows = cells_.rows - 1;
+  const auto cells = static_cast<std::size_t>(columns) * static_cast<std::size_t>(rows);
+  std::vector<Triangle> chosen(cells);
+  parallel_chunks(cells, kBatchChunk, kDefaultThreads, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const auto c = static_cast<int>(i % static_cast<std::size_t>(columns));
+      const auto r = static_cast<int>(i / static_cast<std::size_t>(columns));
+      chosen[i] = choose(cells_.node(c, r) + Eigen::Vector2d::Constant(cells_.spacing / 2.0));
+    }
+  });
+  pieces_.clear();
+  cell_piece_.assign(cells, 0);
+  std::map<std::array<Eigen::Index, 3>, std::int32_t> piece_of;
+  std::vector<Eigen::AlignedBox2d> images(cells);
+  for (std::size_t i = 0; i < cells; ++i) {
+    const Triangle& t = chosen[i];
+    const auto [it, added] =
+        piece_of.try_emplace({t.a, t.b, t.c}, static_cast<std::int32_t>(pieces_.size()));
+    if (added) {
+      Piece piece;
+      affine(t, piece.A, piece.offset);
+      pieces_.push_back(piece);
+    }
+    cell_piece_[i] = it->second;
+    const Piece& piece = pieces_[static_cast<std::size_t>(it->second)];
+    const auto c = static_cast<int>(i % static_cast<std::size_t>(columns));
+    const auto r = static_cast<int>(i / static_cast<std::size_t>(columns));
+    for (const auto& corner : {cells_.node(c, r), cells_.node(c + 1, r), cells_.node(c, r + 1),
+                               cells_.node(c + 1, r + 1)})
+      images[i].extend(Eigen::Vector2d(piece.A * corner + piece.offset));
+  }
+  cell_images_ = GridBoxIndex(std::move(images));
+}
+
+long LinearCombinationMapping::cell_of(const Eigen::Vector2d& p) const {
+  if (cell_piece_.empty())
+    return -1;
+  const Eigen::Vector2d c = (p - cells_.origin) / cells_.spacing;
+  const int columns = cells_.columns - 1, rows = cells_.rows - 1;
+  if (!(c.x() >= 0.0 && c.y() >= 0.0 && c.x() < columns && c.y() < rows))
+    return -1;
+  return static_cast<long>(c.y()) * columns + static_cast<long>(c.x());
+}
+
+void LinearCombinationMapping::affine_at(const Eigen::Vector2d& p, Eigen::Matrix2d& A,
+                                         Eigen::Vector2d& offset) const {
+  if (cell_piece_.empty()) {
+    affine(choose(p), A, offset);  // a file of an earlier build: the triangle chosen at p
+    return;
+  }
+  const long cell = cell_of(p);
+  if (cell < 0) {
+    affine(Triangle{}, A, offset);  // beyond the cells: the similarity
+    return;
+  }
+  const Piece& piece =
+      pieces_[static_cast<std::size_t>(cell_piece_[static_cast<std::size_t>(cell)])];
+  A = piece.A;
+  offset = piece.offset;
+}
+
+Eigen::Vector2d LinearCombinationMapping::forward(const Eigen::Vector2d& p) const {
   Eigen::Matrix2d A;
   Eigen::Vector2d offset;
-  affine(t, A, offset);
+  affine_at(p, A, offset);
   return A * p + offset;
 }
 
 Eigen::Matrix2d LinearCombinationMapping::jacobian(const Eigen::Vector2d& p) const {
-  const Triangle t = choose(p);
-  if (!t.valid())
-    return support_similarity().topLeftCorner<2, 2>();
   Eigen::Matrix2d A;
   Eigen::Vector2d offset;
-  affine(t, A, offset);
+  affine_at(p, A, offset);
   return A;
 }
 
 InverseMapping LinearCombinationMapping::inverse(const Eigen::Vector2d& g) const {
-  // A fixed point of "the triangle chosen at x, inverted at g": then forward(x) = g exactly.
-  InverseMapping m;
+  // Every plan point of g, then invertible only when there is one.
+  std::vector<Eigen::Vector2d> found;
+  // Inside the lattice: each cell whose image's box holds g and whose map takes g back into it.
+  std::vector<int> candidates;
+  cell_images_.holding(g, candidates);
+  for (const int cell : candidates) {
+    const Piece& piece =
+        pieces_[static_cast<std::size_t>(cell_piece_[static_cast<std::size_t>(cell)])];
+    if (!(std::abs(piece.A.determinant()) > 0.0))
+      continue;
+    const Eigen::Vector2d y = piece.A.inverse() * (g - piece.offset);
+    if (cell_of(y) == cell)
+      found.push_back(y);
+  }
+  // Beyond it: the similarity's inverse, if it lies beyond the cells.
   const Eigen::Matrix3d T = support_similarity().inverse();
-  Eigen::Vector2d x = T.topLeftCorner<2, 2>() * g + T.topRightCorner<2, 1>();
-  const auto solve_in = [&](const Triangle& t, Eigen::Vector2d& out) {
+  const Eigen::Vector2d start = T.topLeftCorner<2, 2>() * g + T.topRightCorner<2, 1>();
+  if (!cell_piece_.empty() && cell_of(start) < 0)
+    found.push_back(start);
+  // A file of an earlier build (no cells): the fixed point of "the triangle chosen at x,
+  // inverted at g", from the similarity's inverse.
+  Eigen::Vector2d x = start;
+  int iterations = 0;
+  for (int k = 0; k < common().inverse_max_iterations && cell_piece_.empty(); ++k) {
+    iterations = k + 1;
+    const Triangle t = choose(x);
     Eigen::Matrix2d A;
     Eigen::Vector2d offset;
     affine(t, A, offset);
     if (!(std::abs(A.determinant()) > 0.0))
-      return false;
-    out = A.inverse() * (g - offset);
-    return choose(out) == t;
-  };
-  for (int k = 0; k < common().inverse_max_iterations; ++k) {
-    m.iterations = k + 1;
-    const Triangle t = choose(x);
-    if (!t.valid())
       break;
-    Eigen::Vector2d y;
-    if (solve_in(t, y)) {
-      m.point = y;
-      m.invertible = true;
-      m.residual = (forward(y) - g).norm();
-      return m;
+    const Eigen::Vector2d y = A.inverse() * (g - offset);
+    if (choose(y) == t) {
+      found.push_back(y);
+      break;
     }
     if ((y - x).norm() < 1e-12 * extent())
       break;
     x = y;
   }
-  // The iteration cycled between triangles: try those chosen near the start.
-  double best = std::numeric_limits<double>::infinity();
-  const Eigen::Vector2d start = T.topLeftCorner<2, 2>() * g + T.topRightCorner<2, 1>();
-  for (const auto& n : plan_index_.nearest_k(start, 16)) {
-    const Triangle t = choose(pairs_.points_in_plan.col(n.index));
-    Eigen::Vector2d y;
-    if (t.valid() && solve_in(t, y) && (y - start).norm() < best) {
-      best = (y - start).norm();
-      m.point = y;
-      m.invertible = true;
-    }
+  const double same = 1e-9 * extent();
+  std::vector<Eigen::Vector2d> distinct;
+  for (const Eigen::Vector2d& y : found) {
+    if (std::none_of(distinct.begin(), distinct.end(),
+                     [&](const Eigen::Vector2d& q) { return (y - q).norm() <= same; }))
+      distinct.push_back(y);
   }
-  m.residual =
-      m.invertible ? (forward(m.point) - g).norm() : std::numeric_limits<double>::infinity();
-  if (!m.invertible)
+  InverseMapping m;
+  m.iterations = iterations;
+  m.invertible = distinct.size() == 1;
+  if (distinct.empty()) {
     m.point = x;
+    m.residual = std::numeric_limits<double>::infinity();
+    return m;
+  }
+  // With several, the one nearest the similarity's guess is reported, flagged not invertible.
+  m.point = *std::min_element(distinct.begin(), distinct.end(),
+                              [&](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+                                return (a - start).norm() < (b - start).norm();
+                              });
+  m.residual = (forward(m.point) - g).norm();
   return m;
 }
 
 Value LinearCombinationMapping::parameters() const {
   return {{"neighbours", options_.neighbours},
           {"min_angle_deg", options_.min_angle_deg},
+          {"cell_m", cells_.spacing},
           {"plan", model_fields::points(pairs_.points_in_plan)},
           {"grid", model_fields::points(pairs_.points_in_grid)}};
 }
@@ -208,7 +309,14 @@ void LinearCombinationMapping::load_parameters(const Value& j, const std::string
     throw InputError("plan and grid points differ in number or are fewer than 3", where, 0,
                      "parameters");
   }
-  prepare(pairs);
+  // Files of earlier builds have no cells: their points choose their own triangles, as then.
+  const Value* cell = optional_member(j, "cell_m");
+  const double cell_m = cell ? number(*cell, where, p + "cell_m", 1e-3, 1e3) : -1.0;
+  try {
+    prepare(pairs, cell_m);
+  } catch (const InputError& e) {
+    throw InputError(e.message(), where, 0, p + "cell_m");
+  }
 }
 
 }  // namespace floorgrid

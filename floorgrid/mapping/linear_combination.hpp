@@ -1,5 +1,8 @@
 #pragma once
 
+#include <cstdint>
+
+#include "floorgrid/mapping/fold_index.hpp"
 #include "floorgrid/mapping/point_mapping.hpp"
 
 namespace floorgrid {
@@ -23,9 +26,17 @@ struct LinearCombinationOptions {
 /// the 2x2 system is solved in one basis. Laser pairs lie densely along walls, so the three
 /// nearest points are nearly collinear: the triangle is chosen among the nearest `neighbours`
 /// (widening the search when none qualifies): one containing the point if any, else the one
-/// whose farthest vertex is nearest. The map is piecewise affine and discontinuous where the
-/// chosen triangle changes; the inverse is the fixed point of "choose the triangle, invert its
-/// affine map".
+/// whose farthest vertex is nearest.
+///
+/// The triangle is chosen once per cell of a plan lattice over the pairs' box grown by the
+/// extrapolation distance (cells 10 cm or more, at most 250,000), at the cell's centre; every
+/// point of the cell maps by that triangle's affine map (beyond the lattice, where every point is
+/// flagged extrapolated, by the pairs' similarity). The map is piecewise affine and discontinuous
+/// where the triangle changes from cell to cell: beside such a seam a grid point can have two plan
+/// points, or none. The inverse is exact: it collects every cell whose image holds the grid point
+/// and whose own map takes it back into the cell (and the similarity's inverse, if beyond the
+/// lattice), and is invertible only when there is exactly one plan point, so that it never returns
+/// another plan point than the one a point came from.
 class LinearCombinationMapping : public PointMapping {
  public:
   /// An lc model.
@@ -57,14 +68,34 @@ class LinearCombinationMapping : public PointMapping {
     bool operator==(const Triangle&) const = default;
   };
   Triangle choose(const Eigen::Vector2d& point_in_plan) const;
-  /// The affine map of a triangle: grid = A plan + t.
+  /// The affine map of a triangle: grid = A plan + t (the similarity when `t` is not valid).
   void affine(const Triangle& t, Eigen::Matrix2d& A, Eigen::Vector2d& offset) const;
-  void prepare(const ReferencePairs& pairs);
+  /// Takes the pairs and builds the cells: `cell_m` metres apart (> 0), the default (0), or
+  /// none (< 0: files of earlier builds, which chose the triangle at every point).
+  void prepare(const ReferencePairs& pairs, double cell_m);
+  /// Chooses the triangle of every lattice cell and indexes the cells' grid images (see
+  /// prepare() for `cell_m`).
+  void build_cells(double cell_m);
+  /// The lattice cell holding a plan point (row-major), or -1 outside the lattice.
+  long cell_of(const Eigen::Vector2d& point_in_plan) const;
+  /// The affine map a plan point maps by.
+  void affine_at(const Eigen::Vector2d& point_in_plan, Eigen::Matrix2d& A,
+                 Eigen::Vector2d& offset) const;
+
+  /// One affine map of the lattice: a triangle's.
+  struct Piece {
+    Eigen::Matrix2d A = Eigen::Matrix2d::Identity();
+    Eigen::Vector2d offset = Eigen::Vector2d::Zero();
+  };
 
   LinearCombinationOptions options_;
   ReferencePairs pairs_;
   PointIndex2D plan_index_;
   double min_sin_angle_ = 0.17;
+  PlanLattice cells_;                     ///< nodes are the cells' corners
+  std::vector<std::int32_t> cell_piece_;  ///< per cell: its index into pieces_
+  std::vector<Piece> pieces_;             ///< the distinct maps of the cells
+  GridBoxIndex cell_images_;              ///< per cell: the grid box of its image
 };
 
 }  // namespace floorgrid

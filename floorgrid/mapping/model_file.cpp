@@ -312,6 +312,10 @@ Value PointMapping::to_model_file() const {
 }
 
 void PointMapping::from_model_file(const Value& file, const std::string& where) {
+  {
+    const std::lock_guard lock(fold_index_mutex_);
+    fold_index_.reset();  // the folds of the model loaded, built on first use
+  }
   const Value& options = member(file, "options", where);
   common_.extrapolation_distance =
       number(member(options, "extrapolation_distance_m", where, "options."), where,

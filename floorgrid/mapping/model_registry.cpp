@@ -71,6 +71,7 @@ constexpr std::array<ModelEntry, 10> kModels = {{
                      "pairs (thesis 4.1)",
       .auto_rank = 8,
       .exact_similarity = true,
+      .round_trip_share = 0.95,
       .fit_bytes = linear_bytes},
      [](const MappingOptions& o) -> std::unique_ptr<PointMapping> {
        return std::make_unique<LinearCombinationMapping>(o.common, o.lc);

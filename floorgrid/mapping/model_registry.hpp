@@ -21,6 +21,9 @@ struct ModelTraits {
   bool exact_similarity = false;      ///< recovers a similarity exactly (1e-10 of the extent)
   bool non_rigid = false;             ///< follows local distortions (beats a global transform)
   double identity_tolerance = 1e-10;  ///< identity pairs map to identity within this x extent
+  /// Share of points that come back from a round trip on noisy pairs (the rest lie where the
+  /// map folds or, for a discontinuous model, beside a seam: not invertible, never elsewhere).
+  double round_trip_share = 0.99;
   /// Bytes a fit may need at most for `pairs` pairs (after its reduction), dense matrices
   /// dominating: a budget the machine cannot hold is refused before the fit starts.
   std::size_t (*fit_bytes)(std::size_t pairs, const MappingOptions& options) = nullptr;

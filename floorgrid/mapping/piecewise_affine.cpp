@@ -3,6 +3,8 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <utility>
 
 #include "floorgrid/core/error.hpp"
 #include "floorgrid/geometry/predicates.hpp"
@@ -14,6 +16,33 @@ PiecewiseAffineMapping::PiecewiseAffineMapping(MappingCommonOptions common)
     : PointMapping(std::move(common)) {}
 
 PiecewiseAffineMapping::~PiecewiseAffineMapping() = default;
+
+namespace {
+
+/// Each vertex's neighbours along the triangles' edges.
+std::vector<std::vector<int>> vertex_neighbours(const std::vector<std::array<int, 3>>& triangles,
+                                                std::size_t vertices) {
+  std::vector<std::vector<int>> out(vertices);
+  for (const auto& v : triangles) {
+    for (int k = 0; k < 3; ++k) {
+      out[static_cast<std::size_t>(v[k])].push_back(v[(k + 1) % 3]);
+      out[static_cast<std::size_t>(v[k])].push_back(v[(k + 2) % 3]);
+    }
+  }
+  for (auto& n : out) {
+    std::sort(n.begin(), n.end());
+    n.erase(std::unique(n.begin(), n.end()), n.end());
+  }
+  return out;
+}
+
+/// The outward unit normal of the counter-clockwise hull edge from a to b.
+Eigen::Vector2d outward_normal(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  const Eigen::Vector2d d = b - a;
+  return Eigen::Vector2d(d.y(), -d.x()) / d.norm();
+}
+
+}  // namespace
 
 void PiecewiseAffineMapping::build(const ReferencePairs& pairs) {
   pairs_ = pairs;
@@ -68,13 +97,116 @@ void PiecewiseAffineMapping::build(const ReferencePairs& pairs) {
   }
 }
 
+bool PiecewiseAffineMapping::hull_edge_folds(std::size_t k) const {
+  const std::vector<int>& hull = triangulation_->hull();
+  const int a = hull[k], b = hull[(k + 1) % hull.size()];
+  const auto& P = pairs_.points_in_plan;
+  const auto& G = pairs_.points_in_grid;
+  const Eigen::Matrix2d A = support_similarity().topLeftCorner<2, 2>();
+  const double orientation = A.determinant() >= 0 ? 1.0 : -1.0;
+  Eigen::Matrix2d strip;
+  strip << G.col(b) - G.col(a), A * outward_normal(P.col(a), P.col(b));
+  // In the plan, the edge turns clockwise onto its outward normal (determinant < 0).
+  return !(orientation * strip.determinant() < 0.0);
+}
+
+ReferencePairs PiecewiseAffineMapping::untangle(const ReferencePairs& given) {
+  ReferencePairs kept = given;
+  const std::size_t limit = static_cast<std::size_t>(given.size()) / 4;
+  std::size_t dropped = 0;
+  const Eigen::Matrix3d S = support_similarity();
+  for (int round = 0; round < 100; ++round) {
+    build(kept);
+    const auto& P = kept.points_in_plan;
+    const auto& G = kept.points_in_grid;
+    const auto n = static_cast<std::size_t>(kept.size());
+    // Where a pair disagrees with its neighbours: the Laplacian of the displacement from the
+    // similarity (a smooth warp has almost none; a noisy pair stands out).
+    const Eigen::Matrix2Xd u =
+        G - ((S.topLeftCorner<2, 2>() * P).colwise() + Eigen::Vector2d(S.topRightCorner<2, 1>()));
+    const auto neighbours = vertex_neighbours(triangulation_->triangles(), n);
+    std::vector<double> disagreement(n, 0.0);
+    for (std::size_t v = 0; v < n; ++v) {
+      if (neighbours[v].empty())
+        continue;
+      Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+      for (const int w : neighbours[v])
+        mean += u.col(w);
+      disagreement[v] =
+          (u.col(static_cast<Eigen::Index>(v)) - mean / static_cast<double>(neighbours[v].size()))
+              .norm();
+    }
+    // The corners of every fold: folded triangles and folded hull strips.
+    std::vector<std::vector<int>> folds;
+    const auto& triangles = triangulation_->triangles();
+    for (std::size_t t = 0; t < triangles.size(); ++t) {
+      if (folded_[t])
+        folds.push_back({triangles[t][0], triangles[t][1], triangles[t][2]});
+    }
+    const std::vector<int>& hull = triangulation_->hull();
+    for (std::size_t k = 0; k < hull.size(); ++k) {
+      if (hull_edge_folds(k))
+        folds.push_back({hull[k], hull[(k + 1) % hull.size()]});
+    }
+    if (folds.empty())
+      break;
+    // Worst first; one corner per fold, none twice, none beside one already dropped this round.
+    std::vector<std::pair<double, int>> worst;
+    for (const auto& corners : folds) {
+      int pick = corners.front();
+      for (const int v : corners) {
+        if (disagreement[static_cast<std::size_t>(v)] >
+            disagreement[static_cast<std::size_t>(pick)])
+          pick = v;
+      }
+      worst.emplace_back(disagreement[static_cast<std::size_t>(pick)], pick);
+    }
+    std::sort(worst.begin(), worst.end(), std::greater<>());
+    std::vector<bool> drop(n, false), touched(n, false);
+    std::size_t dropping = 0;
+    for (const auto& [score, v] : worst) {
+      if (touched[static_cast<std::size_t>(v)] || dropped + dropping >= limit)
+        continue;
+      drop[static_cast<std::size_t>(v)] = true;
+      touched[static_cast<std::size_t>(v)] = true;
+      for (const int w : neighbours[static_cast<std::size_t>(v)])
+        touched[static_cast<std::size_t>(w)] = true;
+      ++dropping;
+    }
+    if (dropping == 0 || n - dropping < 3)
+      break;  // the limit: keep the rest folded (the inverse says where)
+    std::vector<Eigen::Index> keep;
+    for (std::size_t v = 0; v < n; ++v) {
+      if (!drop[v])
+        keep.push_back(static_cast<Eigen::Index>(v));
+    }
+    ReferencePairs next = select_pairs(kept, keep);
+    if (DelaunayTriangulation(next.points_in_plan).degenerate())
+      break;
+    kept = std::move(next);
+    dropped += dropping;
+  }
+  untangled_ = dropped;
+  if (pairs_.size() != kept.size())
+    build(kept);  // the last round dropped pairs and ran out of rounds
+  return kept;
+}
+
 void PiecewiseAffineMapping::fit_model(const ReferencePairs& pairs, FitSummary& summary) {
-  build(pairs);
-  summary.rms_m = 0.0;  // the map passes through every pair it was built on
+  untangle(pairs);
+  // The map passes through every pair it kept; the dropped ones are off by their disagreement.
+  const Eigen::Matrix2Xd residuals = forward_batch(pairs.points_in_plan) - pairs.points_in_grid;
+  summary.rms_m = std::sqrt(residuals.colwise().squaredNorm().mean());
   summary.details = {{"triangles", triangulation_->triangles().size()},
                      {"hull_vertices", triangulation_->hull().size()},
                      {"folded_triangles", folded_triangles()},
+                     {"untangled_pairs", untangled_},
                      {"predicates", "exact (adaptive floating point, expansion arithmetic)"}};
+  if (untangled_ > 0) {
+    summary.warnings.push_back(std::to_string(untangled_) +
+                               " pairs dropped where the map folded over (each disagreed most "
+                               "with its neighbours)");
+  }
   if (folded_triangles() > 0) {
     summary.warnings.push_back(std::to_string(folded_triangles()) +
                                " triangles fold over on the grid: points there are not invertible");
@@ -135,14 +267,49 @@ Eigen::Matrix2d PiecewiseAffineMapping::jacobian(const Eigen::Vector2d& p) const
   return S * R.inverse();
 }
 
+void PiecewiseAffineMapping::outside_preimages(const Eigen::Vector2d& g,
+                                               std::vector<Eigen::Vector2d>& out) const {
+  const std::vector<int>& hull = triangulation_->hull();
+  const auto& P = pairs_.points_in_plan;
+  const auto& G = pairs_.points_in_grid;
+  const Eigen::Matrix2d A = support_similarity().topLeftCorner<2, 2>();
+  const Eigen::Matrix2d A_inverse = A.inverse();
+  const double slack = 1e-12, metres_slack = 1e-12 * extent();
+  const std::size_t h = hull.size();
+  for (std::size_t k = 0; k < h; ++k) {
+    const int a = hull[k], b = hull[(k + 1) % h], before = hull[(k + h - 1) % h];
+    const Eigen::Vector2d normal = outward_normal(P.col(a), P.col(b));
+    // The strip beside edge k: g = G_a + t (G_b - G_a) + s A normal, 0 <= t <= 1, s >= 0.
+    Eigen::Matrix2d strip;
+    strip << G.col(b) - G.col(a), A * normal;
+    if (std::abs(strip.determinant()) > 0.0) {
+      const Eigen::Vector2d ts = strip.inverse() * (g - G.col(a));
+      if (ts.x() >= -slack && ts.x() <= 1.0 + slack && ts.y() >= -metres_slack)
+        out.push_back(P.col(a) + ts.x() * (P.col(b) - P.col(a)) + ts.y() * normal);
+    }
+    // The wedge at corner a, between the normals of the edges before and after it:
+    // g = G_a + A d, d = alpha n_before + beta n_after, alpha, beta >= 0.
+    Eigen::Matrix2d wedge;
+    wedge << outward_normal(P.col(before), P.col(a)), normal;
+    if (std::abs(wedge.determinant()) > 1e-12) {
+      const Eigen::Vector2d d = A_inverse * (g - G.col(a));
+      const Eigen::Vector2d ab = wedge.inverse() * d;
+      if (ab.minCoeff() >= -metres_slack)
+        out.push_back(P.col(a) + d);
+    }
+  }
+}
+
 InverseMapping PiecewiseAffineMapping::inverse(const Eigen::Vector2d& g) const {
+  // Every plan point that maps to g: inside the hull (the grid triangles holding g), outside it
+  // (the strips and wedges holding g). Invertible only when there is exactly one.
+  std::vector<Eigen::Vector2d> found;
+  bool on_fold = false;
   const Eigen::Vector2d c = (g - bucket_origin_) / bucket_size_;
   const int x = static_cast<int>(std::floor(c.x())), y = static_cast<int>(std::floor(c.y()));
   if (x >= 0 && y >= 0 && x < bucket_width_ && y < bucket_height_) {
     const auto& G = pairs_.points_in_grid;
     const auto& P = pairs_.points_in_plan;
-    InverseMapping best;
-    bool found_folded = false;
     for (const int t : buckets_[static_cast<std::size_t>(y) * bucket_width_ + x]) {
       const auto& v = triangulation_->triangles()[static_cast<std::size_t>(t)];
       Eigen::Matrix2d S;
@@ -154,24 +321,29 @@ InverseMapping PiecewiseAffineMapping::inverse(const Eigen::Vector2d& g) const {
       if (w.minCoeff() < -tolerance || w.sum() > 1.0 + tolerance)
         continue;
       if (folded_[static_cast<std::size_t>(t)]) {
-        found_folded = true;
+        on_fold = true;  // a flipped triangle covers g: g has more than one plan point
         continue;
       }
-      best.point =
-          P.col(v[0]) + w.x() * (P.col(v[1]) - P.col(v[0])) + w.y() * (P.col(v[2]) - P.col(v[0]));
-      best.invertible = true;
-      best.residual = (forward(best.point) - g).norm();
-      if (!found_folded)
-        return best;
+      found.push_back(P.col(v[0]) + w.x() * (P.col(v[1]) - P.col(v[0])) +
+                      w.y() * (P.col(v[2]) - P.col(v[0])));
     }
-    // A point covered by a folded triangle has more than one preimage: not invertible.
-    if (found_folded)
-      return InverseMapping{best.point, false, 0, best.residual};
-    if (best.invertible)
-      return best;
   }
-  // Outside the grid mesh: the extrapolating hull triangles, inverted by Newton iterations.
-  return PointMapping::inverse(g);
+  outside_preimages(g, found);
+  // Points found twice (on an edge two triangles share, or on the hull) count once.
+  const double same = 1e-9 * extent();
+  std::vector<Eigen::Vector2d> distinct;
+  for (const Eigen::Vector2d& p : found) {
+    if (std::none_of(distinct.begin(), distinct.end(),
+                     [&](const Eigen::Vector2d& q) { return (p - q).norm() <= same; }))
+      distinct.push_back(p);
+  }
+  if (distinct.empty() && !on_fold)
+    return PointMapping::inverse(g);  // not reached by exact arithmetic; rounding at a seam
+  InverseMapping result;
+  result.point = distinct.empty() ? Eigen::Vector2d(g) : distinct.front();
+  result.invertible = !on_fold && distinct.size() == 1;
+  result.residual = (forward(result.point) - g).norm();
+  return result;
 }
 
 Value PiecewiseAffineMapping::parameters() const {

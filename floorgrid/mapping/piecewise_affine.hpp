@@ -13,9 +13,17 @@ namespace floorgrid {
 /// (eq. 4.20-4.23). Outside the hull a point keeps the mapped nearest hull point and moves from
 /// it by the linear part of the pairs' least-squares similarity: continuous at the hull and
 /// bounded however thin the hull's triangles (extrapolating a sliver's own affine map throws
-/// points tens of metres off). The map is continuous and piecewise affine; the inverse finds the
-/// grid triangle holding the point (not invertible where that triangle is flipped against its plan
-/// triangle: a fold).
+/// points tens of metres off). The map is continuous and piecewise affine.
+///
+/// Dense laser pairs lie closer together than their noise, so some grid triangles come out
+/// flipped against their plan triangles: the map folds there and a grid point has several plan
+/// points. The fit untangles: while a triangle folds (or a hull edge's outside strip does), it
+/// drops the pair among its corners that disagrees most with its Delaunay neighbours (the
+/// largest Laplacian of the displacement from the pairs' similarity) and triangulates again, up
+/// to a quarter of the pairs. The inverse is exact: it collects every plan point that maps to the
+/// grid point (the triangles holding it, the outside strips and corner wedges holding it) and is
+/// invertible only when there is exactly one, so that it never returns another preimage than
+/// the one a point came from.
 class PiecewiseAffineMapping : public PointMapping {
  public:
   /// A dt model.
@@ -35,6 +43,8 @@ class PiecewiseAffineMapping : public PointMapping {
 
   /// Triangles whose grid partner is flipped (the map folds there).
   std::size_t folded_triangles() const;
+  /// Pairs the fit dropped to untangle folds.
+  std::size_t untangled_pairs() const { return untangled_; }
 
  protected:
   void fit_model(const ReferencePairs& pairs, FitSummary& summary) override;
@@ -43,6 +53,13 @@ class PiecewiseAffineMapping : public PointMapping {
 
  private:
   void build(const ReferencePairs& pairs);
+  /// The pairs left after dropping those that make the map fold (see the class comment).
+  ReferencePairs untangle(const ReferencePairs& pairs);
+  /// Whether hull edge k's outside strip keeps the orientation (its grid edge turns the same way
+  /// against the similarity's image of the plan edge's outward normal).
+  bool hull_edge_folds(std::size_t k) const;
+  /// The plan points outside the hull that map to `g` (strips and corner wedges), appended.
+  void outside_preimages(const Eigen::Vector2d& g, std::vector<Eigen::Vector2d>& out) const;
   Eigen::Vector2d map_in(int triangle, const Eigen::Vector3d& barycentric) const;
   /// The map of `point` located at `located` (inside: its triangle; outside: the hull rule).
   Eigen::Vector2d map_located(const Eigen::Vector2d& point,
@@ -51,6 +68,7 @@ class PiecewiseAffineMapping : public PointMapping {
   ReferencePairs pairs_;
   std::unique_ptr<DelaunayTriangulation> triangulation_;
   std::vector<bool> folded_;  ///< per triangle
+  std::size_t untangled_ = 0;
   // Grid-side bucket index of the triangles, for the inverse.
   Eigen::Vector2d bucket_origin_ = Eigen::Vector2d::Zero();
   double bucket_size_ = 1.0;

@@ -84,6 +84,10 @@ FitSummary PointMapping::fit(const ReferencePairs& given) {
   }
   summary.pairs_used = static_cast<std::size_t>(pairs.size());
   error_model_.reset();  // a new fit: the error model of the last one no longer holds
+  {
+    const std::lock_guard lock(fold_index_mutex_);
+    fold_index_.reset();  // nor its folds
+  }
   build_support(pairs);
   fit_model(pairs, summary);
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -164,9 +168,25 @@ InverseMapping PointMapping::inverse(const Eigen::Vector2d& target) const {
   }
   result.point = x;
   result.residual = residual.norm();
-  // Invertible: converged where the mapping keeps the similarity's orientation (no fold).
-  result.invertible = result.residual <= tolerance && jacobian(x).determinant() * orientation > 0.0;
+  // Invertible: converged where the mapping keeps the similarity's orientation (no fold), at a
+  // grid point no fold covers (else the point found may not be the one meant).
+  result.invertible = result.residual <= tolerance &&
+                      jacobian(x).determinant() * orientation > 0.0 && !fold_index().covers(target);
   return result;
+}
+
+const FoldIndex& PointMapping::fold_index() const {
+  const std::lock_guard lock(fold_index_mutex_);
+  if (!fold_index_) {
+    Eigen::AlignedBox2d box;
+    for (Eigen::Index i = 0; i < support_.points_in_plan.cols(); ++i)
+      box.extend(Eigen::Vector2d(support_.points_in_plan.col(i)));
+    const PlanLattice lattice =
+        PlanLattice::over(box, common_.extrapolation_distance, 0.05, 250'000);
+    const double orientation = T_support_.topLeftCorner<2, 2>().determinant() >= 0.0 ? 1.0 : -1.0;
+    fold_index_ = std::make_shared<const FoldIndex>(*this, lattice, orientation);
+  }
+  return *fold_index_;
 }
 
 std::optional<double> PointMapping::predictive_std(const Eigen::Vector2d&) const {

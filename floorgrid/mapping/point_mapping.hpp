@@ -3,6 +3,7 @@
 #include <Eigen/Core>
 #include <Eigen/LU>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <utility>
@@ -14,6 +15,7 @@
 #include "floorgrid/geometry/pose2.hpp"
 #include "floorgrid/geometry/reference_pairs.hpp"
 #include "floorgrid/mapping/error_model.hpp"
+#include "floorgrid/mapping/fold_index.hpp"
 #include "floorgrid/mapping/pair_preparation.hpp"
 
 namespace floorgrid {
@@ -140,7 +142,8 @@ class PointMapping {
   virtual Eigen::Matrix2d jacobian(const Eigen::Vector2d& point_in_plan) const;
   /// The plan point of a grid point (default: Newton iterations on forward() from the support
   /// similarity's inverse, to inverse_tolerance x extent; not invertible where det J changes
-  /// sign against the similarity's or the iterations fail).
+  /// sign against the similarity's, where the iterations fail, or where the grid point may have
+  /// another plan point: in the grid image of a fold, see fold_index()).
   virtual InverseMapping inverse(const Eigen::Vector2d& point_in_grid) const;
   /// The model's own posterior standard deviation of the grid point (metres), where the model
   /// has one (the GP's): it sees only uncorrelated pair noise, so map_forward() does not
@@ -174,6 +177,9 @@ class PointMapping {
   bool inside_plan_hull(const Eigen::Vector2d& point_in_plan) const;
   /// Whether a grid point lies inside the convex hull of the support pairs' grid points.
   bool inside_grid_hull(const Eigen::Vector2d& point_in_grid) const;
+  /// Where the mapping folds, seen from the grid (built on first use over the support pairs'
+  /// box grown by the extrapolation distance: at most 250,000 lattice nodes, 5 cm apart or more).
+  const FoldIndex& fold_index() const;
   /// The support pairs: the fitted pairs binned to support_budget.
   const ReferencePairs& support() const { return support_; }
   /// Diagonal of the support plan points' bounds, metres.
@@ -222,6 +228,8 @@ class PointMapping {
   double extent_ = 1.0;
   double unit_ = 1.0;
   std::optional<ErrorModel> error_model_;
+  mutable std::mutex fold_index_mutex_;
+  mutable std::shared_ptr<const FoldIndex> fold_index_;  ///< built by fold_index() on first use
 };
 
 }  // namespace floorgrid
