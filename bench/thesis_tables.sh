@@ -14,7 +14,7 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 data="$root/../shared/data"
 bin="$build/floorgrid"
 mkdir -p "$work"
-models="gt gp gpgt ct dt tps auto"
+models="gt gp gpgt ct dt tps lc auto"
 
 run() {  # name dataset-folder
   local name=$1 dataset=$2
@@ -49,15 +49,17 @@ f = lambda v: "-" if v is None else f"{v:.3f}"
 g = lambda v: "-" if v is None else f"{v:.1e}"
 print("Table 6.1: mean error (m) over the plan's wall samples in the truth's domain")
 print(f"{'dataset':<16}" + "".join(f"{m:>8}" for m in models) + "  chosen")
-drift = {}
+drift, lost, followed = {}, {}, {}
 for r in rows:
     m = json.load(open(f"{work}/{r}/metrics.json"))
     e = [m["models"].get(k, {}).get("mean_error_m") for k in models]
     print(f"{r:<16}" + "".join(f"{f(v):>8}" for v in e) + f"  {m.get('chosen_model', '-')}")
     for k in models:
-        b = m["models"].get(k, {}).get("back_and_forth", {}).get("max_m")
-        if b is not None:
-            drift[k] = max(drift.get(k, 0.0), b)
+        bf = m["models"].get(k, {}).get("back_and_forth", {})
+        if bf.get("max_m") is not None:
+            drift[k] = max(drift.get(k, 0.0), bf["max_m"])
+            lost[k] = lost.get(k, 0) + bf.get("not_invertible", 0)
+            followed[k] = followed.get(k, 0) + bf.get("points", 0)
 print("thesis, Table 6.1 (buildings 79 / 74 / 106 / factory; bent building 74):")
 print("  GT 0.265 / 0.226 / 0.157 / 0.151; GP 0.692 / 0.455 / 0.172 / 0.170;")
 print("  GPGT 0.419 / 0.268 / 0.173 / 0.202; CT 1.705 / 0.458; bent 74: GT 1.75, CT 1.81,")
@@ -66,6 +68,8 @@ print()
 print("Table 6.3: largest back-and-forth drift (m) over 100 round trips, all datasets above")
 print("".join(f"{k:>10}" for k in models))
 print("".join(f"{g(drift.get(k)):>10}" for k in models))
+print("not invertible (points whose grid point has more than one plan point, or none), of all followed:")
+print("".join(f"{lost.get(k, 0):>6}/{followed.get(k, 0):<3}" for k in models))
 print("thesis, Table 6.3: 0.02 m up to 50 m")
 PY
 

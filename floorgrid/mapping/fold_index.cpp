@@ -29,6 +29,17 @@ Eigen::Matrix2Xd PlanLattice::nodes() const {
   return out;
 }
 
+std::vector<Eigen::Vector2d> distinct_points(const std::vector<Eigen::Vector2d>& points,
+                                             double tolerance) {
+  std::vector<Eigen::Vector2d> out;
+  for (const Eigen::Vector2d& p : points) {
+    if (std::none_of(out.begin(), out.end(),
+                     [&](const Eigen::Vector2d& q) { return (p - q).norm() <= tolerance; }))
+      out.push_back(p);
+  }
+  return out;
+}
+
 GridBoxIndex::GridBoxIndex(std::vector<Eigen::AlignedBox2d> boxes) {
   for (auto& b : boxes) {
     if (!b.isEmpty() && b.min().allFinite() && b.max().allFinite())

@@ -28,6 +28,11 @@ struct PlanLattice {
   Eigen::Matrix2Xd nodes() const;
 };
 
+/// The points of `points` that differ, each kept once: a point within `tolerance` of one kept
+/// before is the same (the plan points an inverse found twice, on a shared edge or a seam).
+std::vector<Eigen::Vector2d> distinct_points(const std::vector<Eigen::Vector2d>& points,
+                                             double tolerance);
+
 /// Grid boxes bucketed for point queries: which boxes hold a grid point.
 class GridBoxIndex {
  public:

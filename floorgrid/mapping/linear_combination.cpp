@@ -260,13 +260,7 @@ InverseMapping LinearCombinationMapping::inverse(const Eigen::Vector2d& g) const
       break;
     x = y;
   }
-  const double same = 1e-9 * extent();
-  std::vector<Eigen::Vector2d> distinct;
-  for (const Eigen::Vector2d& y : found) {
-    if (std::none_of(distinct.begin(), distinct.end(),
-                     [&](const Eigen::Vector2d& q) { return (y - q).norm() <= same; }))
-      distinct.push_back(y);
-  }
+  const std::vector<Eigen::Vector2d> distinct = distinct_points(found, 1e-9 * extent());
   InverseMapping m;
   m.iterations = iterations;
   m.invertible = distinct.size() == 1;

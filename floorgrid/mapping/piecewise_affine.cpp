@@ -8,6 +8,7 @@
 
 #include "floorgrid/core/error.hpp"
 #include "floorgrid/geometry/predicates.hpp"
+#include "floorgrid/mapping/fold_index.hpp"
 #include "floorgrid/mapping/model_file.hpp"
 
 namespace floorgrid {
@@ -330,13 +331,7 @@ InverseMapping PiecewiseAffineMapping::inverse(const Eigen::Vector2d& g) const {
   }
   outside_preimages(g, found);
   // Points found twice (on an edge two triangles share, or on the hull) count once.
-  const double same = 1e-9 * extent();
-  std::vector<Eigen::Vector2d> distinct;
-  for (const Eigen::Vector2d& p : found) {
-    if (std::none_of(distinct.begin(), distinct.end(),
-                     [&](const Eigen::Vector2d& q) { return (p - q).norm() <= same; }))
-      distinct.push_back(p);
-  }
+  const std::vector<Eigen::Vector2d> distinct = distinct_points(found, 1e-9 * extent());
   if (distinct.empty() && !on_fold)
     return PointMapping::inverse(g);  // not reached by exact arithmetic; rounding at a seam
   InverseMapping result;
