@@ -480,7 +480,10 @@ std::string back_and_forth_section(const ReportContext& c) {
   return section(
       "back-and-forth", "Back and forth",
       "Each domain point mapped plan to grid and back 100 times: the drift should be far below "
-      "a millimetre (the thesis's separate reverse models drifted metres).",
+      "a millimetre (the thesis's separate reverse models drifted metres). Not invertible: "
+      "points whose grid point has more than one plan point, where the map folds over (or, for "
+      "lc, jumps between triangles); the inverse says so instead of returning another point, "
+      "and they are not in the drift.",
       "<table class=\"numbers\">\n<thead><tr><th>model</th><th>min drift</th><th>mean</th>"
       "<th>max</th><th>points</th><th>not invertible</th></tr></thead>\n<tbody>\n" +
           rows + "</tbody>\n</table>\n");

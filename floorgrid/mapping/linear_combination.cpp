@@ -125,6 +125,16 @@ void LinearCombinationMapping::affine(const Triangle& t, Eigen::Matrix2d& A,
   offset = G.col(t.a) - A * P.col(t.a);
 }
 
+namespace {
+
+/// Cells by default: 200 per pair (a triangle's region spans about a pair spacing, so its cells
+/// are about a fourteenth of that), 250,000 at most.
+std::size_t default_cells(Eigen::Index pairs) {
+  return std::min<std::size_t>(250'000, 200 * static_cast<std::size_t>(pairs));
+}
+
+}  // namespace
+
 void LinearCombinationMapping::build_cells(double cell_m) {
   pieces_.clear();
   cell_piece_.clear();
@@ -143,7 +153,7 @@ void LinearCombinationMapping::build_cells(double cell_m) {
                      {}, 0, "parameters.cell_m");
   }
   cells_ = cell_m > 0.0 ? PlanLattice::over(box, margin, cell_m, SIZE_MAX)
-                        : PlanLattice::over(box, margin, 0.1, 250'000);
+                        : PlanLattice::over(box, margin, 0.1, default_cells(pairs_.size()));
   const int columns = cells_.columns - 1, rows = cells_.rows - 1;
   const auto cells = static_cast<std::size_t>(columns) * static_cast<std::size_t>(rows);
   std::vector<Triangle> chosen(cells);

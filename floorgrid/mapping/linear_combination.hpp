@@ -29,7 +29,8 @@ struct LinearCombinationOptions {
 /// whose farthest vertex is nearest.
 ///
 /// The triangle is chosen once per cell of a plan lattice over the pairs' box grown by the
-/// extrapolation distance (cells 10 cm or more, at most 250,000), at the cell's centre; every
+/// extrapolation distance (cells 10 cm or more, 200 per pair, at most 250,000), at the cell's
+/// centre; every
 /// point of the cell maps by that triangle's affine map (beyond the lattice, where every point is
 /// flagged extrapolated, by the pairs' similarity). The map is piecewise affine and discontinuous
 /// where the triangle changes from cell to cell: beside such a seam a grid point can have two plan

@@ -195,6 +195,7 @@ ReferencePairs PiecewiseAffineMapping::untangle(const ReferencePairs& given) {
 
 void PiecewiseAffineMapping::fit_model(const ReferencePairs& pairs, FitSummary& summary) {
   untangle(pairs);
+  summary.pairs_used = static_cast<std::size_t>(pairs_.size());
   // The map passes through every pair it kept; the dropped ones are off by their disagreement.
   const Eigen::Matrix2Xd residuals = forward_batch(pairs.points_in_plan) - pairs.points_in_grid;
   summary.rms_m = std::sqrt(residuals.colwise().squaredNorm().mean());
