@@ -33,7 +33,8 @@ struct ThinPlateSplineModelOptions {
 /// cross-validation (blocks of the grid frame, see blocked_folds) on a random subsample of at most
 /// `tuning_pairs` pairs, then scaled by (pairs / subsample) so the penalty keeps its weight against
 /// the larger sum of squared residuals. Large batches are mapped through a bicubic lattice of the
-/// spline (built on first use, added error well under 1 mm on binned pairs); single points exactly.
+/// spline over the support's box (built on first use, its spacing refined until the added error
+/// measured is within half of lattice.tolerance, 1 mm); single points and small batches exactly.
 class ThinPlateSplineMapping : public PointMapping {
  public:
   /// A tps model.
