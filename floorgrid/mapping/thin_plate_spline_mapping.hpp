@@ -24,7 +24,9 @@ struct ThinPlateSplineModelOptions {
   int robust_iterations = 2;
   double robust_cutoff = 2.2;
   ThinPlateSplineLatticeOptions lattice;  ///< for mapping many points at once
-  Eigen::Index lattice_from = 50'000;     ///< batches at least this large use the lattice
+  /// Batches at least this large use the lattice (a heat map's batches, HeatMapOptions::chunk,
+  /// are larger: all its cells take one path).
+  Eigen::Index lattice_from = 30'000;
 };
 
 /// `tps`: a thin-plate spline from plan to grid with a regularization weight, as in the QGIS
