@@ -20,7 +20,12 @@ PlanToGridBatch batch_of(const GroundTruth& truth);
 
 /// How heat maps are computed.
 struct HeatMapOptions {
-  /// Cells mapped per batch: the unit of work shared between threads.
+  /// Cells of the mask mapped per batch at least (under twice as many; all of them when the
+  /// mask has fewer): the unit of work shared between threads. A model may map a large batch
+  /// otherwise than a small one, within its stated accuracy (tps through its lattice from
+  /// ThinPlateSplineModelOptions::lattice_from, 30,000 points): with batches this large, every
+  /// cell of a large map takes the same path. Larger batches outgrow the caches (gt's map of
+  /// 4,000 x 4,000 cells takes half as long again with 2^16).
   std::size_t chunk = 1 << 15;
   int threads = kDefaultThreads;  ///< threads; the result does not depend on it
   /// Cells between the nodes at which the uncertainty map evaluates std_m (bilinear between

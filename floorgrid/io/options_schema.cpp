@@ -92,11 +92,22 @@ void visit(OptionVisitor& v, CrossValidationOptions& o) {
 }
 
 void visit(OptionVisitor& v, ThinPlateSplineLatticeOptions& o) {
-  v.field("spacing", o.spacing, {.unit = "m", .doc = "Between lattice nodes", .choices = {}});
+  v.field("spacing", o.spacing,
+          {.unit = "m",
+           .doc = "Between lattice nodes, tried first (halved until the measured error is within "
+                  "half the tolerance)",
+           .choices = {}});
   v.field("margin", o.margin,
           {.unit = "m", .doc = "Added around the box on every side", .choices = {}});
   v.field("threads", o.threads,
           {.unit = "", .doc = "Threads building the nodes (1 or 2)", .choices = {}});
+  v.field("tolerance", o.tolerance,
+          {.unit = "m", .doc = "Largest acceptable |lattice - exact spline|", .choices = {}});
+  v.field("max_nodes", o.max_nodes,
+          {.unit = "",
+           .doc = "Give up (the exact spline everywhere) rather than use more nodes (64 bytes "
+                  "each)",
+           .choices = {}});
 }
 
 void visit(OptionVisitor& v, GpPredictionOptions& o) {

@@ -33,6 +33,7 @@ ThinPlateSplineMapping::ThinPlateSplineMapping(MappingCommonOptions common,
   }
   if (options_.tuning_pairs < 20)
     throw InputError("must be >= 20", {}, 0, "tps.tuning_pairs");
+  validate(options_.lattice);
 }
 
 namespace {

@@ -24,7 +24,9 @@ struct ThinPlateSplineModelOptions {
   int robust_iterations = 2;
   double robust_cutoff = 2.2;
   ThinPlateSplineLatticeOptions lattice;  ///< for mapping many points at once
-  Eigen::Index lattice_from = 50'000;     ///< batches at least this large use the lattice
+  /// Batches at least this large use the lattice (a heat map's batches, HeatMapOptions::chunk,
+  /// are larger: all its cells take one path).
+  Eigen::Index lattice_from = 30'000;
 };
 
 /// `tps`: a thin-plate spline from plan to grid with a regularization weight, as in the QGIS
@@ -33,7 +35,8 @@ struct ThinPlateSplineModelOptions {
 /// cross-validation (blocks of the grid frame, see blocked_folds) on a random subsample of at most
 /// `tuning_pairs` pairs, then scaled by (pairs / subsample) so the penalty keeps its weight against
 /// the larger sum of squared residuals. Large batches are mapped through a bicubic lattice of the
-/// spline (built on first use, added error well under 1 mm on binned pairs); single points exactly.
+/// spline over the support's box (built on first use, its spacing refined until the added error
+/// measured is within half of lattice.tolerance, 1 mm); single points and small batches exactly.
 class ThinPlateSplineMapping : public PointMapping {
  public:
   /// A tps model.

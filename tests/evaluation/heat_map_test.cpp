@@ -4,8 +4,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <mutex>
+#include <vector>
 
+#include "floorgrid/core/random.hpp"
 #include "floorgrid/mapping/mapping_factory.hpp"
 
 namespace floorgrid {
@@ -79,8 +83,9 @@ TEST(HeatMap, CellsOutsideTheMaskAreUnknown) {
 }
 
 TEST(HeatMap, EveryCellIsTheModelsOwnForwardAgainstTheTruth) {
-  // gp and tps map batches through their prediction lattice; the map must equal their
-  // forward() at each cell centre (no further interpolation: the added error is zero).
+  // gp maps through its prediction lattice in forward() too, tps maps batches of fewer than
+  // lattice_from points (these 3,000) exactly: the map must equal their forward() at each cell
+  // centre (no further interpolation: the added error is zero).
   const ReferencePairs pairs = pairs_of(bent);
   const GridGeometry g = raster(60, 50, 0.2);
   for (const char* name : {"gt", "dt", "tps", "gp"}) {
@@ -112,6 +117,126 @@ TEST(HeatMap, ResultDoesNotDependOnThreadsOrChunks) {
   const HeatMap a = error_heat_map(*model, batch_of(bent), g, all, one);
   const HeatMap b = error_heat_map(*model, batch_of(bent), g, all, two);
   EXPECT_EQ(a.values, b.values);
+}
+
+/// The identity, recording the size of every batch it maps.
+class BatchRecorder : public PointMapping {
+ public:
+  BatchRecorder() : PointMapping(MappingCommonOptions{}) {}
+  std::string name() const override { return "recorder"; }
+  std::size_t min_pairs() const override { return 1; }
+  bool needs_non_collinear() const override { return false; }
+  bool reduces_pairs() const override { return false; }
+  Eigen::Vector2d forward(const Eigen::Vector2d& p) const override { return p; }
+  Eigen::Matrix2Xd forward_batch(const Eigen::Ref<const Eigen::Matrix2Xd>& p) const override {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    sizes.push_back(p.cols());
+    return p;
+  }
+  mutable std::vector<Eigen::Index> sizes;
+
+ protected:
+  void fit_model(const ReferencePairs&, FitSummary&) override {}
+  Value parameters() const override { return Value::object(); }
+  void load_parameters(const Value&, const std::string&) override {}
+
+ private:
+  mutable std::mutex mutex_;
+};
+
+TEST(HeatMap, BatchesHoldAtLeastAChunkOfTheMaskAndCoverItOnce) {
+  const GridGeometry g = raster(100, 80);
+  CellMask sparse(g.size(), 0);
+  std::size_t in_mask = 0;
+  for (int iy = 0; iy < g.height; ++iy) {
+    for (int ix = 0; ix < g.width; ++ix) {
+      if ((7 * ix + 3 * iy) % 5 != 0 && !(ix > 20 && ix < 60 && iy > 10 && iy < 50)) {
+        sparse[static_cast<std::size_t>(iy) * g.width + ix] = 1;
+        ++in_mask;
+      }
+    }
+  }
+  const auto offset = [](const Eigen::Ref<const Eigen::Matrix2Xd>& p) {
+    return Eigen::Matrix2Xd(p.colwise() + Eigen::Vector2d(0.3, 0.4));
+  };
+  struct Case {
+    CellMask mask;
+    std::size_t cells, chunk;
+    int threads;
+  };
+  for (const Case& c : {Case{sparse, in_mask, 1000, 1}, Case{sparse, in_mask, 1000, 2},
+                        Case{sparse, in_mask, in_mask + 1, 2}, Case{{}, g.size(), 1000, 2}}) {
+    BatchRecorder recorder;
+    HeatMapOptions options;
+    options.chunk = c.chunk;
+    options.threads = c.threads;
+    const HeatMap map = error_heat_map(recorder, offset, g, c.mask, options);
+    EXPECT_EQ(map.known(), c.cells);
+    for (std::size_t i = 0; i < map.values.size(); ++i) {
+      if (std::isfinite(map.values[i])) {
+        ASSERT_NEAR(map.values[i], 0.5, 1e-6) << i;
+      }
+    }
+    Eigen::Index total = 0;
+    for (const Eigen::Index size : recorder.sizes) {
+      total += size;
+      EXPECT_GE(size, static_cast<Eigen::Index>(std::min(c.chunk, c.cells))) << c.chunk;
+      EXPECT_LT(size, static_cast<Eigen::Index>(2 * c.chunk)) << c.chunk;
+    }
+    EXPECT_EQ(total, static_cast<Eigen::Index>(c.cells));  // each cell once
+    EXPECT_EQ(recorder.sizes.size(), std::max<std::size_t>(1, c.cells / c.chunk));
+  }
+}
+
+/// A SLAM-like distortion over a 200 m building: a rotation, a shift, a 1 m bend (as
+/// bench/heat_map_bench.cpp's).
+Eigen::Vector2d slam_warp(const Eigen::Vector2d& p) {
+  const double c = std::cos(0.2), s = std::sin(0.2);
+  const Eigen::Vector2d b(p.x(), p.y() + 1.0 * std::sin(p.x() / 64.0));
+  return {c * b.x() - s * b.y() + 12.0, s * b.x() + c * b.y() - 7.0};
+}
+
+TEST(HeatMap, ALargeTpsMapIsWithin1mmOfTheExactSpline) {
+  // Laser-like pairs along the walls of 10 m rooms over 200 x 200 m, 2 cm of noise; a map of
+  // 10^6 cells is mapped in batches of at least 2^15 cells, through the tps lattice.
+  Random random(7);
+  ReferencePairs pairs;
+  pairs.points_in_plan.resize(2, 40000);
+  pairs.points_in_grid.resize(2, 40000);
+  for (Eigen::Index i = 0; i < 40000; ++i) {
+    const double along = random.uniform(0.0, 200.0);
+    const double wall = 10.0 * std::floor(random.uniform(0.0, 21.0));
+    const Eigen::Vector2d p =
+        i % 2 == 0 ? Eigen::Vector2d(along, wall) : Eigen::Vector2d(wall, along);
+    pairs.points_in_plan.col(i) = p;
+    pairs.points_in_grid.col(i) =
+        slam_warp(p) + Eigen::Vector2d(random.normal(0.02), random.normal(0.02));
+  }
+  const auto model = fitted("tps", pairs);
+  GridGeometry g;
+  g.width = 1000;
+  g.height = 1000;
+  g.resolution = 0.2;
+  const CellMask all(g.size(), 1);
+  const HeatMap map = error_heat_map(*model, batch_of(slam_warp), g, all);
+  ASSERT_EQ(map.known(), g.size());
+  // Against the exact spline (forward()) at 20,000 random cells.
+  double worst = 0.0;
+  for (int k = 0; k < 20000; ++k) {
+    const auto ix = static_cast<int>(random.integer(0, g.width - 1));
+    const auto iy = static_cast<int>(random.integer(0, g.height - 1));
+    const Eigen::Vector2d p = g.cell_center(ix, iy);
+    const double exact = (model->forward(p) - slam_warp(p)).norm();
+    worst =
+        std::max(worst, std::abs(exact - map.values[static_cast<std::size_t>(iy) * g.width + ix]));
+  }
+  EXPECT_LE(worst, 1e-3);
+  EXPECT_GT(worst, 0.0);  // the lattice, not the exact spline, mapped the cells
+  // The same lattice for every batch: threads and (large) chunks change nothing.
+  HeatMapOptions one;
+  one.threads = 1;
+  one.chunk = 50000;
+  EXPECT_EQ(error_heat_map(*model, batch_of(slam_warp), g, all, one).values, map.values);
 }
 
 TEST(HeatMap, HullCellsAreInsideThePairsHull) {
