@@ -13,8 +13,8 @@
 
 namespace floorgrid {
 
-PiecewiseAffineMapping::PiecewiseAffineMapping(MappingCommonOptions common)
-    : PointMapping(std::move(common)) {}
+PiecewiseAffineMapping::PiecewiseAffineMapping(MappingCommonOptions common, bool untangle)
+    : PointMapping(std::move(common)), untangle_(untangle) {}
 
 PiecewiseAffineMapping::~PiecewiseAffineMapping() = default;
 
@@ -113,7 +113,7 @@ bool PiecewiseAffineMapping::hull_edge_folds(std::size_t k) const {
 
 ReferencePairs PiecewiseAffineMapping::untangle(const ReferencePairs& given) {
   ReferencePairs kept = given;
-  const std::size_t limit = static_cast<std::size_t>(given.size()) / 4;
+  const std::size_t limit = untangle_ ? static_cast<std::size_t>(given.size()) / 4 : 0;
   std::size_t dropped = 0;
   const Eigen::Matrix3d S = support_similarity();
   for (int round = 0; round < 100; ++round) {

@@ -26,8 +26,9 @@ namespace floorgrid {
 /// the one a point came from.
 class PiecewiseAffineMapping : public PointMapping {
  public:
-  /// A dt model.
-  explicit PiecewiseAffineMapping(MappingCommonOptions common);
+  /// A dt model; `untangle` false keeps every pair, folds and all (a ground truth through hand
+  /// pairs, as the thesis).
+  explicit PiecewiseAffineMapping(MappingCommonOptions common, bool untangle = true);
   ~PiecewiseAffineMapping() override;
 
   std::string name() const override { return "dt"; }
@@ -68,6 +69,7 @@ class PiecewiseAffineMapping : public PointMapping {
   ReferencePairs pairs_;
   std::unique_ptr<DelaunayTriangulation> triangulation_;
   std::vector<bool> folded_;  ///< per triangle
+  bool untangle_ = true;
   std::size_t untangled_ = 0;
   // Grid-side bucket index of the triangles, for the inverse.
   Eigen::Vector2d bucket_origin_ = Eigen::Vector2d::Zero();

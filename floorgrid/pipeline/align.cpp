@@ -6,6 +6,7 @@
 #include "floorgrid/core/statistics.hpp"
 #include "floorgrid/geometry/point_index.hpp"
 #include "floorgrid/mapping/model_selection.hpp"
+#include "floorgrid/mapping/piecewise_affine.hpp"
 #include "floorgrid/maps/distance_field.hpp"
 
 namespace floorgrid {
@@ -67,10 +68,10 @@ DatasetTruth dataset_truth(const AlignmentInputs& in) {
   if (in.truth_warp)
     return {in.truth_warp, "warp"};
   if (in.manual_pairs && in.manual_pairs->size() >= 3) {
-    MappingOptions dt;
-    dt.model = "dt";
-    // Shared by the function: the truth outlives this call (Alignment::truth).
-    std::shared_ptr<PointMapping> model = make_mapping(dt);
+    // Through every hand pair, folds and all (the thesis's truth; dt's untangling would drop
+    // the pairs that disagree). Shared by the function: the truth outlives this call.
+    std::shared_ptr<PointMapping> model =
+        std::make_shared<PiecewiseAffineMapping>(MappingCommonOptions{}, false);
     model->fit(*in.manual_pairs);
     return {[model](const Eigen::Vector2d& p) { return model->forward(p); }, "manual_pairs_hull"};
   }
