@@ -136,42 +136,55 @@ Eigen::Matrix2d PointMapping::jacobian(const Eigen::Vector2d& p) const {
 }
 
 InverseMapping PointMapping::inverse(const Eigen::Vector2d& target) const {
-  InverseMapping result;
   const Eigen::Matrix3d T_plan_grid = T_support_.inverse();
-  Eigen::Vector2d x =
-      T_plan_grid.topLeftCorner<2, 2>() * target + T_plan_grid.topRightCorner<2, 1>();
+  const Eigen::Matrix2d A_plan_grid = T_plan_grid.topLeftCorner<2, 2>();
   const double tolerance = common_.inverse_tolerance * extent_;
   const double orientation = T_support_.topLeftCorner<2, 2>().determinant();
-  Eigen::Vector2d residual = forward(x) - target;
-  for (int k = 0; k < common_.inverse_max_iterations; ++k) {
-    result.iterations = k;
-    if (residual.norm() <= tolerance)
-      break;
-    const Eigen::Matrix2d j = jacobian(x);
-    const double det = j.determinant();
-    if (!(std::abs(det) > 1e-12) || !std::isfinite(det))
-      break;
-    const Eigen::Vector2d step = j.inverse() * residual;
-    // Damped Newton: halve the step until the residual falls.
-    double scale = 1.0;
-    Eigen::Vector2d next = x - step, next_residual = forward(next) - target;
-    while (next_residual.norm() >= residual.norm() && scale > 1e-6) {
-      scale *= 0.5;
-      next = x - scale * step;
-      next_residual = forward(next) - target;
+  // Damped Newton iterations from `x`: halve the step until the residual falls.
+  const auto newton = [&](Eigen::Vector2d x) {
+    InverseMapping result;
+    Eigen::Vector2d residual = forward(x) - target;
+    for (int k = 0; k < common_.inverse_max_iterations; ++k) {
+      result.iterations = k;
+      if (residual.norm() <= tolerance)
+        break;
+      const Eigen::Matrix2d j = jacobian(x);
+      const double det = j.determinant();
+      if (!(std::abs(det) > 1e-12) || !std::isfinite(det))
+        break;
+      const Eigen::Vector2d step = j.inverse() * residual;
+      double scale = 1.0;
+      Eigen::Vector2d next = x - step, next_residual = forward(next) - target;
+      while (next_residual.norm() >= residual.norm() && scale > 1e-6) {
+        scale *= 0.5;
+        next = x - scale * step;
+        next_residual = forward(next) - target;
+      }
+      if (scale <= 1e-6)
+        break;
+      x = next;
+      residual = next_residual;
+      result.iterations = k + 1;
     }
-    if (scale <= 1e-6)
-      break;
-    x = next;
-    residual = next_residual;
-    result.iterations = k + 1;
+    result.point = x;
+    result.residual = residual.norm();
+    return result;
+  };
+  // From the similarity's guess; where that stalls (in a fold, say), again from the nearest
+  // support pair's plan point, carried by the similarity to the target.
+  InverseMapping result = newton(A_plan_grid * target + T_plan_grid.topRightCorner<2, 1>());
+  if (!(result.residual <= tolerance) && support_.size() > 0) {
+    const Eigen::Index k = support_grid_index_.nearest(target).index;
+    const InverseMapping again = newton(Eigen::Vector2d(support_.points_in_plan.col(k)) +
+                                        A_plan_grid * (target - support_.points_in_grid.col(k)));
+    if (again.residual < result.residual)
+      result = again;
   }
-  result.point = x;
-  result.residual = residual.norm();
   // Invertible: converged where the mapping keeps the similarity's orientation (no fold), at a
   // grid point no fold covers (else the point found may not be the one meant).
   result.invertible = result.residual <= tolerance &&
-                      jacobian(x).determinant() * orientation > 0.0 && !fold_index().covers(target);
+                      jacobian(result.point).determinant() * orientation > 0.0 &&
+                      !fold_index().covers(target);
   return result;
 }
 

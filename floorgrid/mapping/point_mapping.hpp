@@ -141,7 +141,8 @@ class PointMapping {
   /// J_grid_plan at a plan point (default: central differences on forward()).
   virtual Eigen::Matrix2d jacobian(const Eigen::Vector2d& point_in_plan) const;
   /// The plan point of a grid point (default: Newton iterations on forward() from the support
-  /// similarity's inverse, to inverse_tolerance x extent; not invertible where det J changes
+  /// similarity's inverse, and, where they stall, from the nearest support pair's plan point, to
+  /// inverse_tolerance x extent; not invertible where det J changes
   /// sign against the similarity's, where the iterations fail, or where the grid point may have
   /// another plan point: in the grid image of a fold, see fold_index()).
   virtual InverseMapping inverse(const Eigen::Vector2d& point_in_grid) const;

@@ -61,8 +61,8 @@ TEST(FoldIndex, CoversTheGridImageOfAFoldAndNothingFarFromIt) {
       EXPECT_TRUE(fold.fold_index().covers(g)) << g.transpose();
       EXPECT_FALSE(fold.inverse(g).invertible) << g.transpose();
     } else if (off > fold_half_width() + 1.0) {
-      // One plan point: not covered, and the Newton iterations find it (when they get past
-      // the fold from the similarity's guess).
+      // One plan point: not covered, and the Newton iterations find it (from the similarity's
+      // guess, or else from the nearest pair).
       ++far;
       EXPECT_FALSE(fold.fold_index().covers(g)) << g.transpose();
       const InverseMapping back = fold.inverse(g);
@@ -72,7 +72,8 @@ TEST(FoldIndex, CoversTheGridImageOfAFoldAndNothingFarFromIt) {
       }
     }
   }
-  EXPECT_GE(found, 0.8 * far);  // 87% when written: damped Newton stalls in the fold at times
+  // 99.3% when written; 87% from the similarity's guess alone, before the second start.
+  EXPECT_GE(found, 0.98 * far);
 }
 
 TEST(FoldIndex, ASmoothMapWithoutFoldsHasNone) {
