@@ -127,10 +127,11 @@ void LinearCombinationMapping::affine(const Triangle& t, Eigen::Matrix2d& A,
 
 namespace {
 
-/// Cells by default: 200 per pair (a triangle's region spans about a pair spacing, so its cells
-/// are about a fourteenth of that), 250,000 at most.
+/// Cells by default: 50 per pair (a triangle's region spans about a pair spacing, so its cells
+/// are about a seventh of that; each costs a neighbour search at fit time, a dense grid of them
+/// tripled align's fit stage on a sparse log), 250,000 at most.
 std::size_t default_cells(Eigen::Index pairs) {
-  return std::min<std::size_t>(250'000, 200 * static_cast<std::size_t>(pairs));
+  return std::min<std::size_t>(250'000, 50 * static_cast<std::size_t>(pairs));
 }
 
 }  // namespace

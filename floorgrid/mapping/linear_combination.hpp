@@ -29,7 +29,7 @@ struct LinearCombinationOptions {
 /// whose farthest vertex is nearest.
 ///
 /// The triangle is chosen once per cell of a plan lattice over the pairs' box grown by the
-/// extrapolation distance (cells 10 cm or more, 200 per pair, at most 250,000), at the cell's
+/// extrapolation distance (cells 10 cm or more, 50 per pair, at most 250,000), at the cell's
 /// centre; every
 /// point of the cell maps by that triangle's affine map (beyond the lattice, where every point is
 /// flagged extrapolated, by the pairs' similarity). The map is piecewise affine and discontinuous
