@@ -74,24 +74,29 @@ GridBoxIndex::GridBoxIndex(std::vector<Eigen::AlignedBox2d> boxes) {
   }
 }
 
-void GridBoxIndex::holding(const Eigen::Vector2d& point, std::vector<int>& out) const {
+const std::vector<int>* GridBoxIndex::bucket_of(const Eigen::Vector2d& point) const {
   if (buckets_.empty() || !point.allFinite())
-    return;
+    return nullptr;
   const Eigen::Vector2d c = (point - origin_) / cell_;
   if (!(c.x() >= 0.0 && c.y() >= 0.0 && c.x() < columns_ && c.y() < rows_))
-    return;
-  const auto& bucket =
-      buckets_[static_cast<std::size_t>(c.y()) * columns_ + static_cast<std::size_t>(c.x())];
-  for (const int i : bucket) {
-    if (boxes_[static_cast<std::size_t>(i)].contains(point))
-      out.push_back(i);
+    return nullptr;
+  return &buckets_[static_cast<std::size_t>(c.y()) * columns_ + static_cast<std::size_t>(c.x())];
+}
+
+void GridBoxIndex::holding(const Eigen::Vector2d& point, std::vector<int>& out) const {
+  if (const std::vector<int>* bucket = bucket_of(point)) {
+    for (const int i : *bucket) {
+      if (boxes_[static_cast<std::size_t>(i)].contains(point))
+        out.push_back(i);
+    }
   }
 }
 
 bool GridBoxIndex::any_holds(const Eigen::Vector2d& point) const {
-  std::vector<int> found;
-  holding(point, found);
-  return !found.empty();
+  const std::vector<int>* bucket = bucket_of(point);
+  return bucket && std::any_of(bucket->begin(), bucket->end(), [&](int i) {
+           return boxes_[static_cast<std::size_t>(i)].contains(point);
+         });
 }
 
 FoldIndex::FoldIndex(const PointMapping& mapping, const PlanLattice& lattice, double orientation) {

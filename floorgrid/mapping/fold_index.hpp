@@ -46,6 +46,9 @@ class GridBoxIndex {
   std::size_t size() const { return boxes_.size(); }
 
  private:
+  /// The bucket holding `point`, or null outside every bucket.
+  const std::vector<int>* bucket_of(const Eigen::Vector2d& point) const;
+
   std::vector<Eigen::AlignedBox2d> boxes_;
   Eigen::Vector2d origin_ = Eigen::Vector2d::Zero();
   double cell_ = 1.0;

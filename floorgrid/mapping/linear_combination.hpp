@@ -30,14 +30,13 @@ struct LinearCombinationOptions {
 ///
 /// The triangle is chosen once per cell of a plan lattice over the pairs' box grown by the
 /// extrapolation distance (cells 10 cm or more, 50 per pair, at most 250,000), at the cell's
-/// centre; every
-/// point of the cell maps by that triangle's affine map (beyond the lattice, where every point is
-/// flagged extrapolated, by the pairs' similarity). The map is piecewise affine and discontinuous
-/// where the triangle changes from cell to cell: beside such a seam a grid point can have two plan
-/// points, or none. The inverse is exact: it collects every cell whose image holds the grid point
-/// and whose own map takes it back into the cell (and the similarity's inverse, if beyond the
-/// lattice), and is invertible only when there is exactly one plan point, so that it never returns
-/// another plan point than the one a point came from.
+/// centre; every point of the cell maps by that triangle's affine map (beyond the lattice, where
+/// every point is flagged extrapolated, by the pairs' similarity). The map is piecewise affine and
+/// discontinuous where the triangle changes from cell to cell: beside such a seam a grid point can
+/// have two plan points, or none. The inverse is exact: it collects every cell whose image holds
+/// the grid point and whose own map takes it back into the cell (and the similarity's inverse, if
+/// beyond the lattice), and is invertible only when there is exactly one plan point, so that it
+/// never returns another plan point than the one a point came from.
 class LinearCombinationMapping : public PointMapping {
  public:
   /// An lc model.

@@ -59,43 +59,22 @@ void PiecewiseAffineMapping::build(const ReferencePairs& pairs) {
   const double orientation =
       support_similarity().topLeftCorner<2, 2>().determinant() >= 0 ? 1.0 : -1.0;
   folded_.assign(triangles.size(), false);
-  Eigen::AlignedBox2d box;
-  double size_sum = 0.0;
   for (std::size_t t = 0; t < triangles.size(); ++t) {
     const auto& v = triangles[t];
     folded_[t] = orientation * orient2d(G.col(v[0]), G.col(v[1]), G.col(v[2])) <= 0.0;
+  }
+}
+
+void PiecewiseAffineMapping::index_grid_triangles() {
+  const auto& G = pairs_.points_in_grid;
+  std::vector<Eigen::AlignedBox2d> boxes;
+  for (const auto& v : triangulation_->triangles()) {
+    Eigen::AlignedBox2d box;
     for (const int i : v)
-      box.extend(G.col(i));
-    size_sum += (G.col(v[1]) - G.col(v[0])).norm();
+      box.extend(Eigen::Vector2d(G.col(i)));
+    boxes.push_back(box);
   }
-  // Buckets about two triangles wide over the grid side.
-  bucket_size_ = std::max(2.0 * size_sum / static_cast<double>(triangles.size()),
-                          1e-9 * box.diagonal().norm() + 1e-12);
-  bucket_origin_ = box.min();
-  bucket_width_ = std::max(1, static_cast<int>(std::ceil(box.sizes().x() / bucket_size_)) + 1);
-  bucket_height_ = std::max(1, static_cast<int>(std::ceil(box.sizes().y() / bucket_size_)) + 1);
-  const long cells = static_cast<long>(bucket_width_) * bucket_height_;
-  if (cells > 4'000'000) {  // spread-out folds: coarser buckets
-    const double factor = std::sqrt(static_cast<double>(cells) / 4e6);
-    bucket_size_ *= factor;
-    bucket_width_ = std::max(1, static_cast<int>(std::ceil(box.sizes().x() / bucket_size_)) + 1);
-    bucket_height_ = std::max(1, static_cast<int>(std::ceil(box.sizes().y() / bucket_size_)) + 1);
-  }
-  buckets_.assign(static_cast<std::size_t>(bucket_width_) * bucket_height_, {});
-  for (std::size_t t = 0; t < triangles.size(); ++t) {
-    Eigen::AlignedBox2d tb;
-    for (const int i : triangles[t])
-      tb.extend(G.col(i));
-    const Eigen::Vector2d lo = (tb.min() - bucket_origin_) / bucket_size_;
-    const Eigen::Vector2d hi = (tb.max() - bucket_origin_) / bucket_size_;
-    for (int y = std::max(0, static_cast<int>(lo.y()));
-         y <= std::min(bucket_height_ - 1, static_cast<int>(hi.y())); ++y) {
-      for (int x = std::max(0, static_cast<int>(lo.x()));
-           x <= std::min(bucket_width_ - 1, static_cast<int>(hi.x())); ++x) {
-        buckets_[static_cast<std::size_t>(y) * bucket_width_ + x].push_back(static_cast<int>(t));
-      }
-    }
-  }
+  grid_triangles_ = GridBoxIndex(std::move(boxes));
 }
 
 bool PiecewiseAffineMapping::hull_edge_folds(std::size_t k) const {
@@ -195,6 +174,7 @@ ReferencePairs PiecewiseAffineMapping::untangle(const ReferencePairs& given) {
 
 void PiecewiseAffineMapping::fit_model(const ReferencePairs& pairs, FitSummary& summary) {
   untangle(pairs);
+  index_grid_triangles();
   summary.pairs_used = static_cast<std::size_t>(pairs_.size());
   // The map passes through every pair it kept; the dropped ones are off by their disagreement.
   const Eigen::Matrix2Xd residuals = forward_batch(pairs.points_in_plan) - pairs.points_in_grid;
@@ -307,28 +287,26 @@ InverseMapping PiecewiseAffineMapping::inverse(const Eigen::Vector2d& g) const {
   // (the strips and wedges holding g). Invertible only when there is exactly one.
   std::vector<Eigen::Vector2d> found;
   bool on_fold = false;
-  const Eigen::Vector2d c = (g - bucket_origin_) / bucket_size_;
-  const int x = static_cast<int>(std::floor(c.x())), y = static_cast<int>(std::floor(c.y()));
-  if (x >= 0 && y >= 0 && x < bucket_width_ && y < bucket_height_) {
-    const auto& G = pairs_.points_in_grid;
-    const auto& P = pairs_.points_in_plan;
-    for (const int t : buckets_[static_cast<std::size_t>(y) * bucket_width_ + x]) {
-      const auto& v = triangulation_->triangles()[static_cast<std::size_t>(t)];
-      Eigen::Matrix2d S;
-      S << G.col(v[1]) - G.col(v[0]), G.col(v[2]) - G.col(v[0]);
-      if (!(std::abs(S.determinant()) > 0.0))
-        continue;
-      const Eigen::Vector2d w = S.inverse() * (g - G.col(v[0]));
-      const double tolerance = 1e-12;
-      if (w.minCoeff() < -tolerance || w.sum() > 1.0 + tolerance)
-        continue;
-      if (folded_[static_cast<std::size_t>(t)]) {
-        on_fold = true;  // a flipped triangle covers g: g has more than one plan point
-        continue;
-      }
-      found.push_back(P.col(v[0]) + w.x() * (P.col(v[1]) - P.col(v[0])) +
-                      w.y() * (P.col(v[2]) - P.col(v[0])));
+  const auto& G = pairs_.points_in_grid;
+  const auto& P = pairs_.points_in_plan;
+  std::vector<int> candidates;
+  grid_triangles_.holding(g, candidates);
+  for (const int t : candidates) {
+    const auto& v = triangulation_->triangles()[static_cast<std::size_t>(t)];
+    Eigen::Matrix2d S;
+    S << G.col(v[1]) - G.col(v[0]), G.col(v[2]) - G.col(v[0]);
+    if (!(std::abs(S.determinant()) > 0.0))
+      continue;
+    const Eigen::Vector2d w = S.inverse() * (g - G.col(v[0]));
+    const double tolerance = 1e-12;
+    if (w.minCoeff() < -tolerance || w.sum() > 1.0 + tolerance)
+      continue;
+    if (folded_[static_cast<std::size_t>(t)]) {
+      on_fold = true;  // a flipped triangle covers g: g has more than one plan point
+      continue;
     }
+    found.push_back(P.col(v[0]) + w.x() * (P.col(v[1]) - P.col(v[0])) +
+                    w.y() * (P.col(v[2]) - P.col(v[0])));
   }
   outside_preimages(g, found);
   // Points found twice (on an edge two triangles share, or on the hull) count once.
@@ -359,6 +337,7 @@ void PiecewiseAffineMapping::load_parameters(const Value& j, const std::string& 
   }
   try {
     build(pairs);
+    index_grid_triangles();
   } catch (const InputError& e) {
     throw InputError(e.message(), where, 0, "parameters.plan");
   }

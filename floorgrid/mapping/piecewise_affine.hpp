@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "floorgrid/mapping/delaunay.hpp"
+#include "floorgrid/mapping/fold_index.hpp"
 #include "floorgrid/mapping/point_mapping.hpp"
 
 namespace floorgrid {
@@ -53,7 +54,10 @@ class PiecewiseAffineMapping : public PointMapping {
   void load_parameters(const Value& parameters, const std::string& where) override;
 
  private:
+  /// Triangulates the pairs and marks the folded triangles.
   void build(const ReferencePairs& pairs);
+  /// Indexes the grid triangles for the inverse (once the pairs are final).
+  void index_grid_triangles();
   /// The pairs left after dropping those that make the map fold (see the class comment).
   ReferencePairs untangle(const ReferencePairs& pairs);
   /// Whether hull edge k's outside strip keeps the orientation (its grid edge turns the same way
@@ -71,11 +75,7 @@ class PiecewiseAffineMapping : public PointMapping {
   std::vector<bool> folded_;  ///< per triangle
   bool untangle_ = true;
   std::size_t untangled_ = 0;
-  // Grid-side bucket index of the triangles, for the inverse.
-  Eigen::Vector2d bucket_origin_ = Eigen::Vector2d::Zero();
-  double bucket_size_ = 1.0;
-  int bucket_width_ = 0, bucket_height_ = 0;
-  std::vector<std::vector<int>> buckets_;
+  GridBoxIndex grid_triangles_;  ///< the triangles' grid boxes, for the inverse
 };
 
 }  // namespace floorgrid
