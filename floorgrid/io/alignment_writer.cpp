@@ -126,6 +126,19 @@ json metrics_json(const Alignment& a, const std::string& dataset, const Alignmen
   pairs["noise_rms_m"] =
       a.pair_noise ? number(std::sqrt(a.pair_noise->mean_square_m2)) : json(nullptr);
   pairs["noise_differences"] = a.pair_noise ? a.pair_noise->differences : 0;
+  // The pairs above are the ones the models were fitted on: slid along their walls, when
+  // they were; the filters' own are in pairs-localized.csv.
+  if (a.wall_slide) {
+    json slide = {{"iterations", a.wall_slide->iterations},
+                  {"pairs_on_walls", a.wall_slide->pairs_on_walls},
+                  {"median_slide_m", number(a.wall_slide->median_slide_m)},
+                  {"p95_slide_m", number(a.wall_slide->p95_slide_m)}};
+    if (a.localized_pair_errors) {
+      slide["localized_error_median_m"] = number(a.localized_pair_errors->median);
+      slide["localized_error_mean_m"] = number(a.localized_pair_errors->mean);
+    }
+    pairs["wall_slide"] = slide;
+  }
   j["pairs"] = pairs;
   j["plan_scale"] = number(l.plan_scale);
   j["plan_scale_std"] = number(l.plan_scale_std);
@@ -163,6 +176,7 @@ json metrics_json(const Alignment& a, const std::string& dataset, const Alignmen
                     {"scale_search", l.scale_search_seconds},
                     {"localize", l.localize_seconds},
                     {"pairs", l.pairs_seconds},
+                    {"wall_slide", a.wall_slide_seconds},
                     {"fit", a.fit_seconds},
                     {"evaluate", a.evaluate_seconds},
                     {"write", t.write},
@@ -179,6 +193,10 @@ AlignmentFiles write_alignment(const Alignment& a, const AlignmentInputs& in,
   AlignmentFiles files{folder, {}};
   write_pairs_csv(a.localization.pairs, folder / "pairs.csv");
   files.files.emplace_back("pairs.csv");
+  if (a.wall_slide) {
+    write_pairs_csv(a.localized_pairs, folder / "pairs-localized.csv");
+    files.files.emplace_back("pairs-localized.csv");
+  }
   write_scans_csv(a.localization, in.log, folder / "scans.csv");
   files.files.emplace_back("scans.csv");
   const RgbImage background = grid_picture(in.gridmap);

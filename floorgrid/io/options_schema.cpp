@@ -1046,9 +1046,27 @@ void visit(OptionVisitor& v, DualLocalizerOptions& o) {
           {.unit = "", .doc = "Randomness of both filters (see SeedStream)", .choices = {}});
 }
 
+void visit(OptionVisitor& v, WallSlideOptions& o) {
+  v.field("iterations", o.iterations,
+          {.unit = "", .doc = "Rounds of fit-and-slide (0: the pairs as the filters made them)",
+           .choices = {}});
+  v.field("radius", o.radius,
+          {.unit = "m",
+           .doc = "A pair's wall direction comes from the gridmap's occupied cells this near",
+           .choices = {}});
+  v.field("max_flatness", o.max_flatness,
+          {.unit = "",
+           .doc = "Scatter across a wall over along it at most this for a straight wall",
+           .choices = {}});
+  v.field("smoother", o.smoother,
+          {.unit = "", .doc = "The model whose prediction a pair slides to", .choices = {}});
+}
+
 void visit(OptionVisitor& v, AlignmentOptions& o) {
   v.group("localization", "How pairs are made", [&] { visit(v, o.localization); });
   v.group("models", "Which models, cross-validation, back-and-forth", [&] { visit(v, o.models); });
+  v.group("wall_slide", "The pairs slid along their gridmap walls before the models are fitted",
+          [&] { visit(v, o.wall_slide); });
   v.field("near_pairs", o.near_pairs,
           {.unit = "m",
            .doc = "Wall distances are also summarized over the plan wall points this close to a "

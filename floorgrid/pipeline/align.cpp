@@ -114,6 +114,7 @@ WallDistance wall_distance(const Eigen::Matrix2Xd& samples, const Eigen::Matrix2
 
 Alignment align(const AlignmentInputs& in, const AlignmentOptions& options,
                 const AlignmentProgressCallback& progress) {
+  validate(options.wall_slide);
   Alignment a;
   // The reference pairs, by dual Monte Carlo localization.
   a.localization = localize_dual({.plan = in.plan_grid,
@@ -128,6 +129,18 @@ Alignment align(const AlignmentInputs& in, const AlignmentOptions& options,
                                  });
   if (!a.localization.status.ok)
     return a;
+  if (options.wall_slide.iterations > 0 && a.localization.pairs.size() > 0) {
+    if (progress)
+      progress({"fit", "wall slide", 0, 1});
+    const auto slide_start = Clock::now();
+    WallSlide slide = slide_pairs_along_walls(a.localization.pairs, in.gridmap,
+                                              options.wall_slide, options.models.mapping);
+    a.localized_pairs = std::move(a.localization.pairs);
+    a.localization.pairs = std::move(slide.pairs);
+    slide.pairs = {};
+    a.wall_slide = std::move(slide);
+    a.wall_slide_seconds = seconds_since(slide_start);
+  }
 
   // The truth, where it holds, and the pairs against it.
   const DatasetTruth truth = dataset_truth(in);
@@ -135,6 +148,8 @@ Alignment align(const AlignmentInputs& in, const AlignmentOptions& options,
   a.domain = truth_domain(in, truth, options.domain_spacing);
   if (in.truth_warp && a.localization.pairs.size() > 0)
     a.pair_errors = pair_errors(a.localization.pairs, in.truth_warp);
+  if (in.truth_warp && a.localized_pairs.size() > 0)
+    a.localized_pair_errors = pair_errors(a.localized_pairs, in.truth_warp);
   a.pair_noise = pair_noise(a.localization.pairs);
 
   a.plan_match =

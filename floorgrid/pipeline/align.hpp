@@ -12,6 +12,7 @@
 #include "floorgrid/mapping/pair_noise.hpp"
 #include "floorgrid/pipeline/dual_localizer.hpp"
 #include "floorgrid/pipeline/plan_match.hpp"
+#include "floorgrid/pipeline/wall_slide.hpp"
 
 namespace floorgrid {
 
@@ -32,6 +33,8 @@ struct AlignmentInputs {
 struct AlignmentOptions {
   DualLocalizerOptions localization;  ///< how pairs are made
   ModelComparisonOptions models;      ///< which models, cross-validation, back-and-forth
+  /// The pairs slid along their gridmap walls before any model is fitted (0 rounds: not).
+  WallSlideOptions wall_slide;
   /// Metres: wall distances are also summarized over the plan wall points this close to a
   /// pair (where the models have data).
   double near_pairs = 2.0;
@@ -67,7 +70,16 @@ struct AlignmentProgress {
 
 /// What the main job found.
 struct Alignment {
-  DualLocalization localization;               ///< pairs and how they were made
+  /// How pairs were made. Its `pairs` are the ones every model is fitted on: slid along their
+  /// walls when options.wall_slide asks (the filters' own are then in `localized_pairs`).
+  DualLocalization localization;
+  /// The pairs as the filters made them, before the wall slide (empty without one).
+  ReferencePairs localized_pairs;
+  /// What the wall slide did (its `pairs` left empty: they are localization.pairs).
+  std::optional<WallSlide> wall_slide;
+  double wall_slide_seconds = 0.0;  ///< of the wall slide
+  /// The filters' pairs against the truth, before the wall slide (with a truth and a slide).
+  std::optional<ErrorStatistics> localized_pair_errors;
   std::optional<ErrorStatistics> pair_errors;  ///< pairs against the truth (with a truth)
   PlanMatch plan_match;                        ///< whether the plan is of this building at all
   EvaluationDomain domain;                     ///< where models are judged

@@ -1,0 +1,56 @@
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "floorgrid/geometry/reference_pairs.hpp"
+#include "floorgrid/mapping/mapping_factory.hpp"
+#include "floorgrid/maps/occupancy_grid.hpp"
+
+namespace floorgrid {
+
+/// How pairs are slid along their gridmap wall (see slide_pairs_along_walls).
+struct WallSlideOptions {
+  /// Rounds of fit-and-slide; 0 leaves the pairs as the filters made them.
+  std::size_t iterations = 2;
+  /// Metres: a pair's wall direction comes from the gridmap's occupied cells this near its
+  /// grid point (at least two cells).
+  double radius = 0.25;
+  /// A pair has a wall direction when its wall's occupied cells scatter across the wall at
+  /// most this share of along it (a straight wall: ~0; a corner or a blob: ~1), in (0, 1).
+  double max_flatness = 0.25;
+  /// The smooth model whose prediction a pair slides to (one of mapping_model_names()).
+  std::string smoother = "gp";
+};
+
+/// Throws InputError naming `align.wall_slide.<field>` when an option is out of range.
+void validate(const WallSlideOptions& options);
+
+/// What slide_pairs_along_walls did.
+struct WallSlide {
+  ReferencePairs pairs;            ///< the pairs slid (the ones models are fitted on)
+  std::size_t pairs_on_walls = 0;  ///< pairs with a wall direction (the ones that may slide)
+  std::size_t iterations = 0;      ///< rounds done
+  double median_slide_m = 0.0;     ///< median distance a pair on a wall moved (grid metres)
+  double p95_slide_m = 0.0;        ///< its 95th percentile
+};
+
+/// A pair's grid point is a laser endpoint on a gridmap wall. Across the wall both filters
+/// place it to a few centimetres; along the wall (down a corridor) a filter's pose error is
+/// two to three times larger and shared by every pair of the scan and often of every visit,
+/// so interpolating models follow it. Each round fits `options.smoother` (with `mapping`'s
+/// settings) to the current pairs and moves every pair on a straight wall along that wall, and
+/// only along it, to where the smooth model puts its plan point; pairs at corners and off the
+/// walls keep their grid points, and so anchor the walls' along positions. The across-wall
+/// component of every pair is kept exactly. Deterministic; pairs too few for the smoother are
+/// returned as they are. InputError on bad options.
+WallSlide slide_pairs_along_walls(const ReferencePairs& pairs, const OccupancyGrid& gridmap,
+                                  const WallSlideOptions& options = {},
+                                  const MappingOptions& mapping = {});
+
+/// The unit direction of the gridmap's wall at `point_in_grid` (from the occupied cells within
+/// `radius`), or zero where there is no straight wall there (see WallSlideOptions).
+Eigen::Vector2d wall_direction(const OccupancyGrid& gridmap, const Eigen::Vector2d& point_in_grid,
+                               double radius, double max_flatness);
+
+}  // namespace floorgrid
