@@ -77,16 +77,9 @@ void run_align(const std::string& dataset, const std::string& out, const JobOpti
   progress.finish();
   require_localized(a.localization.status, d);
   print_localization(a.localization, a.pair_errors);
-  if (a.wall_slide) {
-    fmt::print(
-        "wall slide  {} of {} pairs on a straight gridmap wall slid along it to a smooth fit "
-        "({} rounds): median {:.3f} m, 95% {:.3f} m",
-        a.wall_slide->pairs_on_walls, a.localization.pairs.size(), a.wall_slide->iterations,
-        a.wall_slide->median_slide_m, a.wall_slide->p95_slide_m);
-    if (a.localized_pair_errors)
-      fmt::print("; pairs' median error {:.3f} m before", a.localized_pair_errors->median);
-    fmt::print("\n");
-  }
+  if (a.wall_slide)
+    print_wall_slide(*a.wall_slide, static_cast<std::size_t>(a.localization.pairs.size()),
+                     a.localized_pair_errors);
   if (a.pair_noise) {
     fmt::print(
         "pair noise  {:.3f} m rms, from {} differences between visits to one place "

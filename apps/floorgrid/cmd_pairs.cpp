@@ -32,6 +32,7 @@ void add_pairs_command(CLI::App& root) {
   add_job_options(cmd, job, false);
   cmd->callback([args, job] {
     const JobOptions options = job_options(*job);
+    validate(options.align.wall_slide);
     const std::filesystem::path out(args->out);
     const io::OutputFolder out_folder(out.parent_path().empty() ? "." : out.parent_path());
     const io::LoadedDataset d =
@@ -52,17 +53,26 @@ void add_pairs_command(CLI::App& root) {
         judge_plan_match(inputs.gridmap, inputs.plan, plan_walls_of(inputs.plan_geometry), l.pairs,
                          options.align.localization.plan_location.map_registration);
     require_plan_match(match, d, options.align.localization.plan_location);
-    io::write_pairs_csv(l.pairs, out);
-    std::optional<ErrorStatistics> errors;
-    if (d.truth_warp && l.pairs.size() > 0) {
+    const auto errors_of = [&](const ReferencePairs& pairs) -> std::optional<ErrorStatistics> {
+      if (!d.truth_warp || pairs.size() == 0)
+        return std::nullopt;
       std::vector<double> e;
-      for (Eigen::Index i = 0; i < l.pairs.size(); ++i)
-        e.push_back((d.truth_warp->plan_to_grid(l.pairs.points_in_plan.col(i)) -
-                     l.pairs.points_in_grid.col(i))
-                        .norm());
-      errors = error_statistics(std::move(e));
-    }
-    print_localization(l, errors);
+      for (Eigen::Index i = 0; i < pairs.size(); ++i)
+        e.push_back(
+            (d.truth_warp->plan_to_grid(pairs.points_in_plan.col(i)) - pairs.points_in_grid.col(i))
+                .norm());
+      return error_statistics(std::move(e));
+    };
+    // As align: the pairs slid along their walls, the ones its models are fitted on.
+    std::optional<WallSlide> slide;
+    if (options.align.wall_slide.iterations > 0)
+      slide = slide_pairs_along_walls(l.pairs, inputs.gridmap, options.align.wall_slide,
+                                      options.align.models.mapping);
+    const ReferencePairs& pairs = slide ? slide->pairs : l.pairs;
+    io::write_pairs_csv(pairs, out);
+    print_localization(l, errors_of(pairs));
+    if (slide)
+      print_wall_slide(*slide, static_cast<std::size_t>(pairs.size()), errors_of(l.pairs));
     fmt::print("wrote       {}\n", out.string());
   });
 }

@@ -30,6 +30,17 @@ std::string reasons(const DivergenceCount& d) {
 
 }  // namespace
 
+void print_wall_slide(const WallSlide& s, std::size_t pairs,
+                      const std::optional<ErrorStatistics>& errors_before) {
+  fmt::print(
+      "wall slide  {} of {} pairs on a straight gridmap wall slid along it to a smooth fit "
+      "({} rounds): median {:.3f} m, 95% {:.3f} m",
+      s.pairs_on_walls, pairs, s.iterations, s.median_slide_m, s.p95_slide_m);
+  if (errors_before)
+    fmt::print("; pairs' median error {:.3f} m before", errors_before->median);
+  fmt::print("\n");
+}
+
 void print_localization(const DualLocalization& l,
                         const std::optional<ErrorStatistics>& pair_errors) {
   std::size_t usable = 0;

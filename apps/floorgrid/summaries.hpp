@@ -12,6 +12,10 @@ namespace floorgrid::app {
 void print_localization(const DualLocalization& localization,
                         const std::optional<ErrorStatistics>& pair_errors);
 
+/// Prints what the wall slide did (and the filters' pairs' median error before it, when known).
+void print_wall_slide(const WallSlide& slide, std::size_t pairs,
+                      const std::optional<ErrorStatistics>& errors_before);
+
 /// Prints one row per model: errors against the truth, cross-validated error, wall distance,
 /// back-and-forth drift, fit time; and the model `auto` chose.
 void print_models(const Alignment& alignment);

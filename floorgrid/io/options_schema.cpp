@@ -1048,7 +1048,8 @@ void visit(OptionVisitor& v, DualLocalizerOptions& o) {
 
 void visit(OptionVisitor& v, WallSlideOptions& o) {
   v.field("iterations", o.iterations,
-          {.unit = "", .doc = "Rounds of fit-and-slide (0: the pairs as the filters made them)",
+          {.unit = "",
+           .doc = "Rounds of fit-and-slide (0: the pairs as the filters made them)",
            .choices = {}});
   v.field("radius", o.radius,
           {.unit = "m",

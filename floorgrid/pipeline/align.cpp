@@ -133,8 +133,8 @@ Alignment align(const AlignmentInputs& in, const AlignmentOptions& options,
     if (progress)
       progress({"fit", "wall slide", 0, 1});
     const auto slide_start = Clock::now();
-    WallSlide slide = slide_pairs_along_walls(a.localization.pairs, in.gridmap,
-                                              options.wall_slide, options.models.mapping);
+    WallSlide slide = slide_pairs_along_walls(a.localization.pairs, in.gridmap, options.wall_slide,
+                                              options.models.mapping);
     a.localized_pairs = std::move(a.localization.pairs);
     a.localization.pairs = std::move(slide.pairs);
     slide.pairs = {};

@@ -14,11 +14,11 @@ void validate(const WallSlideOptions& o) {
   const std::string p = "align.wall_slide.";
   require_option(o.iterations <= 100, p + "iterations", o.iterations, "<= 100");
   require_option(o.radius > 0.0 && std::isfinite(o.radius), p + "radius", o.radius, "> 0 metres");
-  require_option(o.max_flatness > 0.0 && o.max_flatness < 1.0, p + "max_flatness",
-                 o.max_flatness, "in (0, 1)");
+  require_option(o.max_flatness > 0.0 && o.max_flatness < 1.0, p + "max_flatness", o.max_flatness,
+                 "in (0, 1)");
   const std::vector<std::string> names = mapping_model_names();
-  require_option(std::find(names.begin(), names.end(), o.smoother) != names.end(),
-                 p + "smoother", o.smoother, "a model name");
+  require_option(std::find(names.begin(), names.end(), o.smoother) != names.end(), p + "smoother",
+                 o.smoother, "a model name");
 }
 
 Eigen::Vector2d wall_direction(const OccupancyGrid& gridmap, const Eigen::Vector2d& point_in_grid,
@@ -63,8 +63,8 @@ WallSlide slide_pairs_along_walls(const ReferencePairs& pairs, const OccupancyGr
   const Eigen::Index n = pairs.size();
   std::vector<Eigen::Vector2d> along(static_cast<std::size_t>(n));
   for (Eigen::Index i = 0; i < n; ++i) {
-    along[static_cast<std::size_t>(i)] = wall_direction(gridmap, pairs.points_in_grid.col(i),
-                                                        options.radius, options.max_flatness);
+    along[static_cast<std::size_t>(i)] =
+        wall_direction(gridmap, pairs.points_in_grid.col(i), options.radius, options.max_flatness);
     out.pairs_on_walls += along[static_cast<std::size_t>(i)].squaredNorm() > 0.0 ? 1 : 0;
   }
   MappingOptions smoother_options = mapping;
