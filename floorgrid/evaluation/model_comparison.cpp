@@ -36,7 +36,8 @@ std::vector<ModelReport> compare_models(const ReferencePairs& pairs, const Evalu
                                         const std::optional<GroundTruth>& truth,
                                         const std::optional<PairNoise>& noise,
                                         const ModelComparisonOptions& options,
-                                        const ModelProgress& progress) {
+                                        const ModelProgress& progress,
+                                        const ErrorModelSource& error_source) {
   std::vector<ModelReport> reports(options.models.size());
   // auto last: it reuses the other models' cross-validation when the folds agree.
   std::vector<std::size_t> order;
@@ -73,6 +74,16 @@ std::vector<ModelReport> compare_models(const ReferencePairs& pairs, const Evalu
       if (options.cv_folds >= 2 && name == "auto") {
         report.summary.cv_error_m = model->summary().cv_error_m;
         report.summary.cv = model->summary().cv;
+        if (const auto* chooser = dynamic_cast<const AutoMapping*>(model.get());
+            chooser && error_source.pairs) {
+          MappingOptions chosen = mapping;
+          chosen.model = chooser->chosen().name();
+          CrossValidationOptions cv = mapping.auto_select.cv;
+          cv.folds = options.cv_folds;
+          cv.kind = CrossValidationKind::blocked;
+          model->set_error_model(
+              fit_model_error(chosen, *error_source.pairs, cv, error_source.noise));
+        }
       } else if (options.cv_folds >= 2) {
         // The same blocks and pair budget as auto's, so that auto can reuse the result.
         CrossValidationOptions cv = mapping.auto_select.cv;
@@ -85,9 +96,12 @@ std::vector<ModelReport> compare_models(const ReferencePairs& pairs, const Evalu
         const CrossValidationResult r = cross_validate(mapping, pairs, cv);
         model->set_cv_error(r.mean_error_m, r.method);
         const auto runs = by_runs.find(name);
-        model->set_error_model(fit_model_error(
-            mapping, pairs, cv, noise, cv.kind == CrossValidationKind::blocked ? &r : nullptr,
-            runs != by_runs.end() ? &runs->second : nullptr));
+        model->set_error_model(
+            error_source.pairs
+                ? fit_model_error(mapping, *error_source.pairs, cv, error_source.noise)
+                : fit_model_error(mapping, pairs, cv, noise,
+                                  cv.kind == CrossValidationKind::blocked ? &r : nullptr,
+                                  runs != by_runs.end() ? &runs->second : nullptr));
         report.summary.cv_error_m = r.mean_error_m;
         report.summary.cv = r.method;
         cross_validated[name] = r;

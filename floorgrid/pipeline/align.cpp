@@ -39,7 +39,8 @@ void fit_and_judge_models(const AlignmentInputs& in, const AlignmentOptions& opt
                      [&](const std::string& model, std::size_t done, std::size_t total) {
                        if (progress)
                          progress({"fit", model, done, total});
-                     });
+                     },
+                     {a.localized_pairs.size() > 0 ? &a.localized_pairs : nullptr, a.pair_noise});
   const double total_seconds = seconds_since(fit_start);
   double wall_seconds = 0.0;
   for (ModelReport& r : reports) {
@@ -150,7 +151,9 @@ Alignment align(const AlignmentInputs& in, const AlignmentOptions& options,
     a.pair_errors = pair_errors(a.localization.pairs, in.truth_warp);
   if (in.truth_warp && a.localized_pairs.size() > 0)
     a.localized_pair_errors = pair_errors(a.localized_pairs, in.truth_warp);
-  a.pair_noise = pair_noise(a.localization.pairs);
+  // Every model's std_m is learnt from the filters' own pairs (see ErrorModelSource).
+  const bool slid = a.localized_pairs.size() > 0;
+  a.pair_noise = pair_noise(slid ? a.localized_pairs : a.localization.pairs);
 
   a.plan_match =
       judge_plan_match(in.gridmap, in.plan_grid, plan_walls_of(in.plan), a.localization.pairs,
