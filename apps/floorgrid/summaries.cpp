@@ -130,9 +130,10 @@ void print_models(const Alignment& a) {
   for (const ModelAlignment& m : a.models) {
     if (const auto& cv = m.report.summary.cv; cv && m.report.failure.empty()) {
       fmt::print(
-          "cv_m: mean held-out error of {}-fold {} cross-validation{}\n", cv->folds, cv->kind,
+          "cv_m: mean held-out error of {}-fold {} cross-validation{}{}\n", cv->folds, cv->kind,
           cv->kind == "blocked" ? fmt::format(" (whole {:.2f} m blocks held out)", cv->block_size)
-                                : std::string());
+                                : std::string(),
+          a.wall_slide ? ", on the pairs before the wall slide (as std_m)" : "");
       break;
     }
   }

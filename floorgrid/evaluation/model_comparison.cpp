@@ -81,8 +81,11 @@ std::vector<ModelReport> compare_models(const ReferencePairs& pairs, const Evalu
           CrossValidationOptions cv = mapping.auto_select.cv;
           cv.folds = options.cv_folds;
           cv.kind = CrossValidationKind::blocked;
+          // The chosen model's blocked folds on those pairs are known (fitted before auto).
+          const auto known = cross_validated.find(chosen.model);
           model->set_error_model(
-              fit_model_error(chosen, *error_source.pairs, cv, error_source.noise));
+              fit_model_error(chosen, *error_source.pairs, cv, error_source.noise,
+                              known != cross_validated.end() ? &known->second : nullptr, nullptr));
         }
       } else if (options.cv_folds >= 2) {
         // The same blocks and pair budget as auto's, so that auto can reuse the result.
@@ -93,15 +96,16 @@ std::vector<ModelReport> compare_models(const ReferencePairs& pairs, const Evalu
             by_runs[name] = cross_validate(mapping, pairs, cv);
           cv.kind = CrossValidationKind::blocked;
         }
-        const CrossValidationResult r = cross_validate(mapping, pairs, cv);
+        // cv_error_m and std_m from the filters' own pairs when the fitted ones were slid
+        // (ErrorModelSource); auto still compares its candidates on the fitted pairs.
+        const ReferencePairs& held = error_source.pairs ? *error_source.pairs : pairs;
+        const CrossValidationResult r = cross_validate(mapping, held, cv);
         model->set_cv_error(r.mean_error_m, r.method);
-        const auto runs = by_runs.find(name);
+        const auto runs = error_source.pairs ? by_runs.end() : by_runs.find(name);
         model->set_error_model(
-            error_source.pairs
-                ? fit_model_error(mapping, *error_source.pairs, cv, error_source.noise)
-                : fit_model_error(mapping, pairs, cv, noise,
-                                  cv.kind == CrossValidationKind::blocked ? &r : nullptr,
-                                  runs != by_runs.end() ? &runs->second : nullptr));
+            fit_model_error(mapping, held, cv, error_source.pairs ? error_source.noise : noise,
+                            cv.kind == CrossValidationKind::blocked ? &r : nullptr,
+                            runs != by_runs.end() ? &runs->second : nullptr));
         report.summary.cv_error_m = r.mean_error_m;
         report.summary.cv = r.method;
         cross_validated[name] = r;

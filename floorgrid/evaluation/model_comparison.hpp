@@ -73,8 +73,8 @@ struct ErrorModelSource {
 /// errors and its back-and-forth drift over the domain. A model that cannot be fitted is
 /// reported with its failure instead of stopping the others. `noise` is the pairs' own
 /// (pair_noise), taken out of every model's std_m. With `error_source.pairs`, every model's
-/// std_m (auto's: its chosen model's) is learnt from those pairs instead (its own blocked and
-/// runs cross-validation on them).
+/// cv_error_m and std_m (auto's: its chosen model's std_m) come from cross-validation on those
+/// pairs instead; auto still compares its candidates on `pairs`.
 std::vector<ModelReport> compare_models(const ReferencePairs& pairs, const EvaluationDomain& domain,
                                         const std::optional<GroundTruth>& truth,
                                         const std::optional<PairNoise>& noise,
