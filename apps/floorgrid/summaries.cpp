@@ -32,10 +32,20 @@ std::string reasons(const DivergenceCount& d) {
 
 void print_wall_slide(const WallSlide& s, std::size_t pairs,
                       const std::optional<ErrorStatistics>& errors_before) {
+  const std::string noise =
+      s.noise
+          ? fmt::format("their noise between visits {:.3f} m along their walls, {:.3f} m across",
+                        std::sqrt(s.noise->along_m2), std::sqrt(s.noise->across_m2))
+          : std::string("no place visited twice to measure their noise along the walls");
+  if (!s.applied) {
+    fmt::print("wall slide  none: {} ({} of {} pairs on a straight gridmap wall)\n", noise,
+               s.pairs_on_walls, pairs);
+    return;
+  }
   fmt::print(
       "wall slide  {} of {} pairs on a straight gridmap wall slid along it to a smooth fit "
-      "({} rounds): median {:.3f} m, 95% {:.3f} m",
-      s.pairs_on_walls, pairs, s.iterations, s.median_slide_m, s.p95_slide_m);
+      "({} rounds; {}): median {:.3f} m, 95% {:.3f} m",
+      s.pairs_on_walls, pairs, s.iterations, noise, s.median_slide_m, s.p95_slide_m);
   if (errors_before)
     fmt::print("; pairs' median error {:.3f} m before", errors_before->median);
   fmt::print("\n");
@@ -133,7 +143,8 @@ void print_models(const Alignment& a) {
           "cv_m: mean held-out error of {}-fold {} cross-validation{}{}\n", cv->folds, cv->kind,
           cv->kind == "blocked" ? fmt::format(" (whole {:.2f} m blocks held out)", cv->block_size)
                                 : std::string(),
-          a.wall_slide ? ", on the pairs before the wall slide (as std_m)" : "");
+          a.wall_slide && a.wall_slide->applied ? ", on the pairs before the wall slide (as std_m)"
+                                                : "");
       break;
     }
   }

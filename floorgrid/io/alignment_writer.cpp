@@ -129,8 +129,12 @@ json metrics_json(const Alignment& a, const std::string& dataset, const Alignmen
   // The pairs above are the ones the models were fitted on: slid along their walls, when
   // they were; the filters' own are in pairs-localized.csv.
   if (a.wall_slide) {
-    json slide = {{"iterations", a.wall_slide->iterations},
+    const auto& noise = a.wall_slide->noise;
+    json slide = {{"applied", a.wall_slide->applied},
+                  {"iterations", a.wall_slide->iterations},
                   {"pairs_on_walls", a.wall_slide->pairs_on_walls},
+                  {"noise_along_m", noise ? number(std::sqrt(noise->along_m2)) : json(nullptr)},
+                  {"noise_across_m", noise ? number(std::sqrt(noise->across_m2)) : json(nullptr)},
                   {"median_slide_m", number(a.wall_slide->median_slide_m)},
                   {"p95_slide_m", number(a.wall_slide->p95_slide_m)}};
     if (a.localized_pair_errors) {
@@ -193,7 +197,7 @@ AlignmentFiles write_alignment(const Alignment& a, const AlignmentInputs& in,
   AlignmentFiles files{folder, {}};
   write_pairs_csv(a.localization.pairs, folder / "pairs.csv");
   files.files.emplace_back("pairs.csv");
-  if (a.wall_slide) {
+  if (a.localized_pairs.size() > 0) {
     write_pairs_csv(a.localized_pairs, folder / "pairs-localized.csv");
     files.files.emplace_back("pairs-localized.csv");
   }

@@ -1061,6 +1061,11 @@ void visit(OptionVisitor& v, WallSlideOptions& o) {
            .choices = {}});
   v.field("smoother", o.smoother,
           {.unit = "", .doc = "The model whose prediction a pair slides to", .choices = {}});
+  v.field("min_along_ratio", o.min_along_ratio,
+          {.unit = "",
+           .doc = "Pairs slide only when their noise between visits is this many times larger "
+                  "along their walls than across",
+           .choices = {}});
 }
 
 void visit(OptionVisitor& v, AlignmentOptions& o) {

@@ -1,7 +1,9 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <optional>
+#include <vector>
 
 #include "floorgrid/geometry/reference_pairs.hpp"
 #include "floorgrid/mapping/cross_validation_folds.hpp"
@@ -40,5 +42,28 @@ struct PairNoise {
 /// never revisit a place, or too few). Deterministic.
 std::optional<PairNoise> pair_noise(const ReferencePairs& pairs,
                                     const PairNoiseOptions& options = {});
+
+/// One difference between two visits to one place: the query pair's column and d (grid metres,
+/// see PairNoise).
+using VisitDifference = std::function<void(Eigen::Index i, const Eigen::Vector2d& d)>;
+
+/// Calls `visit` for every difference pair_noise uses (the same pairs, places and stretches);
+/// false when the pairs are too few or degenerate to form any.
+bool for_each_visit_difference(const ReferencePairs& pairs, const PairNoiseOptions& options,
+                               const VisitDifference& visit);
+
+/// The pairs' own noise split along and across a direction per pair (a unit vector, or zero
+/// where there is none: such query pairs are skipped).
+struct DirectionalPairNoise {
+  double along_m2 = 0.0;        ///< E n_along^2, m^2 (one axis)
+  double across_m2 = 0.0;       ///< E n_across^2, m^2 (one axis)
+  std::size_t differences = 0;  ///< differences it was estimated from
+};
+
+/// pair_noise along and across `along` (one direction per pair, in the grid frame), or nullopt
+/// with fewer than options.min_differences differences. Deterministic.
+std::optional<DirectionalPairNoise> pair_noise_along(const ReferencePairs& pairs,
+                                                     const std::vector<Eigen::Vector2d>& along,
+                                                     const PairNoiseOptions& options = {});
 
 }  // namespace floorgrid

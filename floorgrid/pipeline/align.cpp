@@ -136,8 +136,10 @@ Alignment align(const AlignmentInputs& in, const AlignmentOptions& options,
     const auto slide_start = Clock::now();
     WallSlide slide = slide_pairs_along_walls(a.localization.pairs, in.gridmap, options.wall_slide,
                                               options.models.mapping);
-    a.localized_pairs = std::move(a.localization.pairs);
-    a.localization.pairs = std::move(slide.pairs);
+    if (slide.applied) {
+      a.localized_pairs = std::move(a.localization.pairs);
+      a.localization.pairs = std::move(slide.pairs);
+    }
     slide.pairs = {};
     a.wall_slide = std::move(slide);
     a.wall_slide_seconds = seconds_since(slide_start);

@@ -73,7 +73,7 @@ struct Alignment {
   /// How pairs were made. Its `pairs` are the ones every model is fitted on: slid along their
   /// walls when options.wall_slide asks (the filters' own are then in `localized_pairs`).
   DualLocalization localization;
-  /// The pairs as the filters made them, before the wall slide (empty without one).
+  /// The pairs as the filters made them, before the wall slide (empty when none slid).
   ReferencePairs localized_pairs;
   /// What the wall slide did (its `pairs` left empty: they are localization.pairs).
   std::optional<WallSlide> wall_slide;

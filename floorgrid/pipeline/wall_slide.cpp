@@ -16,6 +16,8 @@ void validate(const WallSlideOptions& o) {
   require_option(o.radius > 0.0 && std::isfinite(o.radius), p + "radius", o.radius, "> 0 metres");
   require_option(o.max_flatness > 0.0 && o.max_flatness < 1.0, p + "max_flatness", o.max_flatness,
                  "in (0, 1)");
+  require_option(o.min_along_ratio >= 1.0 && std::isfinite(o.min_along_ratio),
+                 p + "min_along_ratio", o.min_along_ratio, ">= 1");
   const std::vector<std::string> names = mapping_model_names();
   require_option(std::find(names.begin(), names.end(), o.smoother) != names.end(), p + "smoother",
                  o.smoother, "a model name");
@@ -69,8 +71,13 @@ WallSlide slide_pairs_along_walls(const ReferencePairs& pairs, const OccupancyGr
   }
   MappingOptions smoother_options = mapping;
   smoother_options.model = options.smoother;
-  if (out.pairs_on_walls == 0)
+  if (out.pairs_on_walls == 0 || options.iterations == 0)
     return out;
+  out.noise = pair_noise_along(pairs, along);
+  const double ratio = options.min_along_ratio;
+  if (!out.noise || !(out.noise->along_m2 >= ratio * ratio * out.noise->across_m2))
+    return out;
+  out.applied = true;
   for (std::size_t round = 0; round < options.iterations; ++round) {
     std::unique_ptr<PointMapping> smoother = make_mapping(smoother_options);
     if (distinct_plan_points(out.pairs) < smoother->min_pairs())

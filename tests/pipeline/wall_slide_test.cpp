@@ -35,15 +35,18 @@ OccupancyGrid corridor(double yaw = 0.0) {
 }
 
 /// Scans every 0.5 m down the corridor's middle, each seeing the walls within 4 m; a scan far
-/// from the corridor's ends is lost along it (sigma 0.15 m), one near an end is not. The truth is
+/// from the corridor's ends is lost along it (`along_sigma`), one near an end is not (both
+/// axes `across_sigma`). The truth is
 /// the identity: a pair's grid point is the wall point, its plan point is off by the scan's pose
 /// error.
-ReferencePairs corridor_pairs(std::uint64_t seed) {
+ReferencePairs corridor_pairs(std::uint64_t seed, double along_sigma = 0.15,
+                              double across_sigma = 0.01) {
   Random random(seed);
   std::vector<Eigen::Vector2d> plan, grid;
   for (double xs = 2.0; xs <= 28.0; xs += 0.5) {
     const bool near_end = xs < 5.0 || xs > 25.0;
-    const Eigen::Vector2d error(random.normal(near_end ? 0.01 : 0.15), random.normal(0.01));
+    const Eigen::Vector2d error(random.normal(near_end ? across_sigma : along_sigma),
+                                random.normal(across_sigma));
     const auto see = [&](const Eigen::Vector2d& wall_point) {
       if ((wall_point - Eigen::Vector2d(xs, 3.0)).norm() > 4.0)
         return;
@@ -93,6 +96,9 @@ TEST(WallSlide, MovesPairsAlongTheirWallOnlyAndTowardsTheTruth) {
   const WallSlide slide = slide_pairs_along_walls(pairs, grid);
   ASSERT_EQ(slide.pairs.size(), pairs.size());
   EXPECT_EQ(slide.iterations, 2u);
+  EXPECT_TRUE(slide.applied);
+  ASSERT_TRUE(slide.noise);
+  EXPECT_GT(slide.noise->along_m2, 4.0 * slide.noise->across_m2);
   EXPECT_GT(slide.pairs_on_walls, static_cast<std::size_t>(pairs.size()) * 8 / 10);
   EXPECT_GT(slide.median_slide_m, 0.01);
 
@@ -151,6 +157,17 @@ TEST(WallSlide, NoRoundsOrNoWallsLeaveThePairsAsTheyAre) {
   EXPECT_EQ(open.pairs.points_in_grid, pairs.points_in_grid);
 }
 
+TEST(WallSlide, PairsAsUnsureAcrossTheirWallsAsAlongThemStay) {
+  // Scan errors of 5 cm on both axes everywhere: the revisits show no aperture effect.
+  const ReferencePairs pairs = corridor_pairs(5, 0.05, 0.05);
+  const WallSlide slide = slide_pairs_along_walls(pairs, corridor());
+  ASSERT_TRUE(slide.noise);
+  EXPECT_NEAR(std::sqrt(slide.noise->along_m2 / slide.noise->across_m2), 1.0, 0.3);
+  EXPECT_FALSE(slide.applied);
+  EXPECT_EQ(slide.iterations, 0u);
+  EXPECT_EQ(slide.pairs.points_in_grid, pairs.points_in_grid);
+}
+
 TEST(WallSlide, BadOptionsNameTheirField) {
   test::expect_input_error([] { validate(WallSlideOptions{.radius = 0.0}); },
                            {"align.wall_slide.radius"});
@@ -160,6 +177,8 @@ TEST(WallSlide, BadOptionsNameTheirField) {
                            {"align.wall_slide.smoother", "spline"});
   test::expect_input_error([] { validate(WallSlideOptions{.iterations = 1000}); },
                            {"align.wall_slide.iterations"});
+  test::expect_input_error([] { validate(WallSlideOptions{.min_along_ratio = 0.5}); },
+                           {"align.wall_slide.min_along_ratio"});
 }
 
 }  // namespace
