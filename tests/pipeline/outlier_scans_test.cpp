@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "floorgrid/core/random.hpp"
+#include "tests/support/test_data.hpp"
 
 namespace floorgrid {
 namespace {
@@ -41,14 +42,7 @@ ReferencePairs scans_of_pairs(const std::vector<std::size_t>& shifted, const Eig
       grid.push_back(q);
     }
   }
-  ReferencePairs pairs;
-  pairs.points_in_plan.resize(2, static_cast<Eigen::Index>(plan.size()));
-  pairs.points_in_grid.resize(2, static_cast<Eigen::Index>(grid.size()));
-  for (std::size_t i = 0; i < plan.size(); ++i) {
-    pairs.points_in_plan.col(static_cast<Eigen::Index>(i)) = plan[i];
-    pairs.points_in_grid.col(static_cast<Eigen::Index>(i)) = grid[i];
-  }
-  return pairs;
+  return test::pairs_of(plan, grid);
 }
 
 TEST(OutlierScans, DropsTheScanThatDisagreesAndKeepsTheRest) {

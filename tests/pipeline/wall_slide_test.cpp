@@ -8,6 +8,7 @@
 
 #include "floorgrid/core/random.hpp"
 #include "tests/support/expect_error.hpp"
+#include "tests/support/test_data.hpp"
 
 namespace floorgrid {
 namespace {
@@ -62,14 +63,7 @@ ReferencePairs corridor_pairs(std::uint64_t seed, double along_sigma = 0.15,
       see({29.025, y});
     }
   }
-  ReferencePairs pairs;
-  pairs.points_in_plan.resize(2, static_cast<Eigen::Index>(plan.size()));
-  pairs.points_in_grid.resize(2, static_cast<Eigen::Index>(grid.size()));
-  for (std::size_t i = 0; i < plan.size(); ++i) {
-    pairs.points_in_plan.col(static_cast<Eigen::Index>(i)) = plan[i];
-    pairs.points_in_grid.col(static_cast<Eigen::Index>(i)) = grid[i];
-  }
-  return pairs;
+  return test::pairs_of(plan, grid);
 }
 
 TEST(WallDirection, FollowsAStraightWallAndNoneAtACornerOrInTheOpen) {

@@ -88,4 +88,17 @@ nlohmann::json read_json(const std::filesystem::path& path) {
   return nlohmann::json::parse(in);
 }
 
+ReferencePairs pairs_of(const std::vector<Eigen::Vector2d>& plan,
+                        const std::vector<Eigen::Vector2d>& grid) {
+  EXPECT_EQ(plan.size(), grid.size());
+  ReferencePairs pairs;
+  pairs.points_in_plan.resize(2, static_cast<Eigen::Index>(plan.size()));
+  pairs.points_in_grid.resize(2, static_cast<Eigen::Index>(grid.size()));
+  for (std::size_t i = 0; i < plan.size() && i < grid.size(); ++i) {
+    pairs.points_in_plan.col(static_cast<Eigen::Index>(i)) = plan[i];
+    pairs.points_in_grid.col(static_cast<Eigen::Index>(i)) = grid[i];
+  }
+  return pairs;
+}
+
 }  // namespace floorgrid::test

@@ -5,6 +5,9 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
+
+#include "floorgrid/geometry/reference_pairs.hpp"
 
 namespace floorgrid::test {
 
@@ -26,6 +29,10 @@ class TempDir {
  private:
   std::filesystem::path path_;
 };
+
+/// Pairs of plan and grid points given side by side (equal lengths), in that order.
+ReferencePairs pairs_of(const std::vector<Eigen::Vector2d>& plan,
+                        const std::vector<Eigen::Vector2d>& grid);
 
 /// Writes `text` to `path` (binary, exact bytes).
 void write_file(const std::filesystem::path& path, const std::string& text);
