@@ -311,6 +311,36 @@ std::string histogram_section(const ReportContext& c) {
           head + "</tr></thead>\n<tbody>\n" + rows + "</tbody>\n</table>\n</details>\n");
 }
 
+namespace {
+
+/// What the wall slide did to the pairs (metrics.json pairs.wall_slide), or "" without one.
+std::string wall_slide_paragraph(const json& slide) {
+  if (!slide.is_object() || !json_at(slide, {"noise_along_m"}).is_number())
+    return "";
+  const std::string noise =
+      fmt::format("their noise between visits is {} along their gridmap walls and {} across",
+                  format_metres(json_at(slide, {"noise_along_m"})),
+                  format_metres(json_at(slide, {"noise_across_m"})));
+  if (!json_at(slide, {"applied"}).is_boolean() || !json_at(slide, {"applied"}).get<bool>())
+    return "<p>The pairs were not slid along their walls: " + noise +
+           ", not clearly more along (see README, &ldquo;Pairs slid along their "
+           "walls&rdquo;).</p>\n";
+  std::string p = fmt::format(
+      "<p>Before the models were fitted, the {} pairs on a straight gridmap wall were slid along "
+      "it, never across, to a smooth fit of all pairs ({}): median {}, 95% under {}.",
+      format_count(json_at(slide, {"pairs_on_walls"})), noise,
+      format_metres(json_at(slide, {"median_slide_m"})),
+      format_metres(json_at(slide, {"p95_slide_m"})));
+  if (json_at(slide, {"localized_error_median_m"}).is_number())
+    p += fmt::format(" The filters' own pairs had a median error of {} against the truth.",
+                     format_metres(json_at(slide, {"localized_error_median_m"})));
+  return p +
+         " The models' cross-validated error and std_m come from the filters' own pairs "
+         "(pairs-localized.csv).</p>\n";
+}
+
+}  // namespace
+
 std::string pairs_section(const ReportContext& c) {
   const json& pairs = json_at(c.metrics(), {"pairs"});
   std::string body =
@@ -328,6 +358,7 @@ std::string pairs_section(const ReportContext& c) {
                         format_metres(json_at(pairs, {"noise_rms_m"})));
   }
   body += "</p>\n";
+  body += wall_slide_paragraph(json_at(pairs, {"wall_slide"}));
   const json& rejected = json_at(pairs, {"rejected"});
   if (rejected.is_object() && !rejected.empty()) {
     double total = number_or(json_at(pairs, {"count"}), 0.0);

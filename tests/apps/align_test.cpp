@@ -121,6 +121,14 @@ TEST(AlignCommand, OfficeGivesAccuratePairsAndModelsAndEveryContractKey) {
             0.5 * m["pairs"]["error_mean_m"].get<double>());
   EXPECT_LT(m["pairs"]["noise_rms_m"].get<double>(),
             2.0 * m["pairs"]["error_mean_m"].get<double>());
+  // The wall slide says what it measured, and the files agree with whether pairs slid.
+  const json& slide = m["pairs"]["wall_slide"];
+  ASSERT_TRUE(slide.is_object());
+  ASSERT_TRUE(slide["noise_along_m"].is_number() && slide["noise_across_m"].is_number());
+  const bool slid = slide["applied"].get<bool>();
+  EXPECT_EQ(slid,
+            slide["noise_along_m"].get<double>() >= 1.5 * slide["noise_across_m"].get<double>());
+  EXPECT_EQ(fs::exists(dir / "out" / "pairs-localized.csv"), slid);
   // The pairs file holds the pairs counted.
   const ReferencePairs pairs = io::read_pairs_csv(dir / "out" / "pairs.csv");
   EXPECT_EQ(pairs.size(), m["pairs"]["count"].get<Eigen::Index>());

@@ -38,6 +38,15 @@ json small_metrics() {
             {"error_mean_m", 0.041},
             {"error_p95_m", 0.12},
             {"noise_rms_m", 0.02},
+            {"wall_slide",
+             {{"applied", true},
+              {"iterations", 2},
+              {"pairs_on_walls", 9876},
+              {"noise_along_m", 0.081},
+              {"noise_across_m", 0.037},
+              {"median_slide_m", 0.04},
+              {"p95_slide_m", 0.2},
+              {"localized_error_median_m", 0.059}}},
             {"rejected", {{"not_converged", 321}, {"off_plan_wall", 4567}}}}},
           {"plan_scale", 1.02134},
           {"plan_scale_std", 0.00012},
@@ -111,7 +120,10 @@ TEST(ReportHtml, NumbersAreMetricsJsonsAsTheReportFormatsThem) {
         io::format_count(m["pairs"]["rejected"]["off_plan_wall"]),
         io::format_percent(m["pairs"]["converged_fraction"]), io::format_ratio(m["plan_scale"]),
         io::format_ratio(m["plan_scale_std"]), io::format_seconds(m["timings_s"]["localize"]),
-        io::format_metres(m["pairs"]["error_median_m"])}) {
+        io::format_metres(m["pairs"]["error_median_m"]),
+        io::format_count(m["pairs"]["wall_slide"]["pairs_on_walls"]),
+        io::format_metres(m["pairs"]["wall_slide"]["noise_along_m"]),
+        io::format_metres(m["pairs"]["wall_slide"]["localized_error_median_m"])}) {
     EXPECT_NE(html.find(expected), std::string::npos) << expected;
   }
   // The formats themselves: units, and tiny drifts by magnitude.
