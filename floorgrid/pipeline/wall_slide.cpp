@@ -4,9 +4,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "floorgrid/core/error.hpp"
 #include "floorgrid/core/statistics.hpp"
 #include "floorgrid/core/validation.hpp"
 #include "floorgrid/mapping/model_registry.hpp"
+#include "floorgrid/mapping/pair_preparation.hpp"
 
 namespace floorgrid {
 
@@ -77,12 +79,15 @@ WallSlide slide_pairs_along_walls(const ReferencePairs& pairs, const OccupancyGr
   const double ratio = options.min_along_ratio;
   if (!out.noise || !(out.noise->along_m2 >= ratio * ratio * out.noise->across_m2))
     return out;
-  out.applied = true;
   for (std::size_t round = 0; round < options.iterations; ++round) {
     std::unique_ptr<PointMapping> smoother = make_mapping(smoother_options);
     if (distinct_plan_points(out.pairs) < smoother->min_pairs())
       break;
-    smoother->fit(out.pairs);
+    try {
+      smoother->fit(out.pairs);
+    } catch (const InputError&) {
+      break;  // pairs the smoother cannot fit (collinear, say): they stay as they are
+    }
     const Eigen::Matrix2Xd predicted = smoother->forward_batch(pairs.points_in_plan);
     // Slide from where the filters put each pair (not from the last round's place): the
     // across-wall part stays the measured one exactly.
@@ -95,6 +100,7 @@ WallSlide slide_pairs_along_walls(const ReferencePairs& pairs, const OccupancyGr
     }
     ++out.iterations;
   }
+  out.applied = out.iterations > 0;
   std::vector<double> slides;
   slides.reserve(out.pairs_on_walls);
   for (Eigen::Index i = 0; i < n; ++i) {
