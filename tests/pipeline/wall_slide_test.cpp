@@ -162,6 +162,27 @@ TEST(WallSlide, PairsAsUnsureAcrossTheirWallsAsAlongThemStay) {
   EXPECT_EQ(slide.pairs.points_in_grid, pairs.points_in_grid);
 }
 
+TEST(WallSlide, PairsTheSmootherCannotFitStay) {
+  // Only the lower wall's pairs, none off its line: a spline cannot be fitted to collinear plan
+  // points, so nothing slides (and nothing throws), though the noise calls for a slide.
+  const ReferencePairs all = corridor_pairs(9, 0.15, 0.0);
+  std::vector<Eigen::Vector2d> plan, grid;
+  for (Eigen::Index i = 0; i < all.size(); ++i) {
+    if (std::abs(all.points_in_grid(1, i) - 2.025) < 1e-9) {
+      plan.push_back(all.points_in_plan.col(i));
+      grid.push_back(all.points_in_grid.col(i));
+    }
+  }
+  const ReferencePairs pairs = test::pairs_of(plan, grid);
+  ASSERT_GT(pairs.size(), 500);
+  const WallSlide slide = slide_pairs_along_walls(pairs, corridor(), {.smoother = "tps"});
+  ASSERT_TRUE(slide.noise);
+  EXPECT_GT(slide.noise->along_m2, 2.25 * slide.noise->across_m2);
+  EXPECT_FALSE(slide.applied);
+  EXPECT_EQ(slide.iterations, 0u);
+  EXPECT_EQ(slide.pairs.points_in_grid, pairs.points_in_grid);
+}
+
 TEST(WallSlide, BadOptionsNameTheirField) {
   test::expect_input_error([] { validate(WallSlideOptions{.radius = 0.0}); },
                            {"align.wall_slide.radius"});
