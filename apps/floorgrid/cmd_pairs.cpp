@@ -56,12 +56,7 @@ void add_pairs_command(CLI::App& root) {
     const auto errors_of = [&](const ReferencePairs& pairs) -> std::optional<ErrorStatistics> {
       if (!d.truth_warp || pairs.size() == 0)
         return std::nullopt;
-      std::vector<double> e;
-      for (Eigen::Index i = 0; i < pairs.size(); ++i)
-        e.push_back(
-            (d.truth_warp->plan_to_grid(pairs.points_in_plan.col(i)) - pairs.points_in_grid.col(i))
-                .norm());
-      return error_statistics(std::move(e));
+      return pair_errors(pairs, warp_truth(d));
     };
     // As align: the pairs slid along their walls, the ones its models are fitted on.
     std::optional<WallSlide> slide;

@@ -37,7 +37,7 @@ void print_wall_slide(const WallSlide& s, std::size_t pairs,
           ? fmt::format("their noise between visits {:.3f} m along their walls, {:.3f} m across",
                         std::sqrt(s.noise->along_m2), std::sqrt(s.noise->across_m2))
           : std::string("no place visited twice to measure their noise along the walls");
-  if (!s.applied) {
+  if (!s.applied()) {
     fmt::print("wall slide  none: {} ({} of {} pairs on a straight gridmap wall)\n", noise,
                s.pairs_on_walls, pairs);
     return;
@@ -143,7 +143,7 @@ void print_models(const Alignment& a) {
           "cv_m: mean held-out error of {}-fold {} cross-validation{}{}\n", cv->folds, cv->kind,
           cv->kind == "blocked" ? fmt::format(" (whole {:.2f} m blocks held out)", cv->block_size)
                                 : std::string(),
-          a.wall_slide && a.wall_slide->applied ? ", on the pairs before the wall slide (as std_m)"
+          a.wall_slide && a.wall_slide->applied() ? ", on the pairs before the wall slide (as std_m)"
                                                 : "");
       break;
     }

@@ -37,7 +37,7 @@ std::vector<ModelReport> compare_models(const ReferencePairs& pairs, const Evalu
                                         const std::optional<PairNoise>& noise,
                                         const ModelComparisonOptions& options,
                                         const ModelProgress& progress,
-                                        const ErrorModelSource& error_source) {
+                                        const ReferencePairs* error_pairs) {
   std::vector<ModelReport> reports(options.models.size());
   // auto last: it reuses the other models' cross-validation when the folds agree.
   std::vector<std::size_t> order;
@@ -75,7 +75,7 @@ std::vector<ModelReport> compare_models(const ReferencePairs& pairs, const Evalu
         report.summary.cv_error_m = model->summary().cv_error_m;
         report.summary.cv = model->summary().cv;
         if (const auto* chooser = dynamic_cast<const AutoMapping*>(model.get());
-            chooser && error_source.pairs) {
+            chooser && error_pairs) {
           MappingOptions chosen = mapping;
           chosen.model = chooser->chosen().name();
           CrossValidationOptions cv = mapping.auto_select.cv;
@@ -84,7 +84,7 @@ std::vector<ModelReport> compare_models(const ReferencePairs& pairs, const Evalu
           // The chosen model's blocked folds on those pairs are known (fitted before auto).
           const auto known = cross_validated.find(chosen.model);
           model->set_error_model(
-              fit_model_error(chosen, *error_source.pairs, cv, error_source.noise,
+              fit_model_error(chosen, *error_pairs, cv, noise,
                               known != cross_validated.end() ? &known->second : nullptr, nullptr));
         }
       } else if (options.cv_folds >= 2) {
@@ -97,15 +97,14 @@ std::vector<ModelReport> compare_models(const ReferencePairs& pairs, const Evalu
           cv.kind = CrossValidationKind::blocked;
         }
         // cv_error_m and std_m from the filters' own pairs when the fitted ones were slid
-        // (ErrorModelSource); auto still compares its candidates on the fitted pairs.
-        const ReferencePairs& held = error_source.pairs ? *error_source.pairs : pairs;
+        // (error_pairs); auto still compares its candidates on the fitted pairs.
+        const ReferencePairs& held = error_pairs ? *error_pairs : pairs;
         const CrossValidationResult r = cross_validate(mapping, held, cv);
         model->set_cv_error(r.mean_error_m, r.method);
-        const auto runs = error_source.pairs ? by_runs.end() : by_runs.find(name);
-        model->set_error_model(
-            fit_model_error(mapping, held, cv, error_source.pairs ? error_source.noise : noise,
-                            cv.kind == CrossValidationKind::blocked ? &r : nullptr,
-                            runs != by_runs.end() ? &runs->second : nullptr));
+        const auto runs = error_pairs ? by_runs.end() : by_runs.find(name);
+        model->set_error_model(fit_model_error(
+            mapping, held, cv, noise, cv.kind == CrossValidationKind::blocked ? &r : nullptr,
+            runs != by_runs.end() ? &runs->second : nullptr));
         report.summary.cv_error_m = r.mean_error_m;
         report.summary.cv = r.method;
         cross_validated[name] = r;

@@ -60,26 +60,21 @@ void judge_model(ModelReport& report, const EvaluationDomain& domain,
 using ModelProgress =
     std::function<void(const std::string& model, std::size_t done, std::size_t total)>;
 
-/// Pairs a model's std_m is learnt from when they are not the ones it is fitted on: the
-/// filters' own pairs when the fitted ones were slid along their walls (a slid pair's along-wall
-/// place comes from a fit of every pair, its own held-out neighbours included, so held-out
-/// errors on slid pairs understate the model's error), with their own noise.
-struct ErrorModelSource {
-  const ReferencePairs* pairs = nullptr;  ///< null: the fitted pairs
-  std::optional<PairNoise> noise;         ///< those pairs' own noise (pair_noise)
-};
-
 /// Fits every model to `pairs`, cross-validates it, and (with a domain and a truth) measures its
 /// errors and its back-and-forth drift over the domain. A model that cannot be fitted is
-/// reported with its failure instead of stopping the others. `noise` is the pairs' own
-/// (pair_noise), taken out of every model's std_m. With `error_source.pairs`, every model's
-/// cv_error_m and std_m (auto's: its chosen model's std_m) come from cross-validation on those
-/// pairs instead; auto still compares its candidates on `pairs`.
+/// reported with its failure instead of stopping the others.
+/// With `error_pairs`, every model's cv_error_m and std_m (auto's: its chosen model's std_m)
+/// come from cross-validation on those pairs instead of `pairs`, and auto still compares its
+/// candidates on `pairs`: align passes the filters' own pairs when the fitted ones were slid
+/// along their walls (a slid pair's along-wall place comes from a fit of every pair, its
+/// held-out neighbours included, so held-out errors on slid pairs understate the error).
+/// `noise` is the own noise (pair_noise) of the pairs std_m is learnt from, taken out of every
+/// model's std_m.
 std::vector<ModelReport> compare_models(const ReferencePairs& pairs, const EvaluationDomain& domain,
                                         const std::optional<GroundTruth>& truth,
                                         const std::optional<PairNoise>& noise,
                                         const ModelComparisonOptions& options,
                                         const ModelProgress& progress = {},
-                                        const ErrorModelSource& error_source = {});
+                                        const ReferencePairs* error_pairs = nullptr);
 
 }  // namespace floorgrid

@@ -130,7 +130,7 @@ json metrics_json(const Alignment& a, const std::string& dataset, const Alignmen
   // they were; the filters' own are in pairs-localized.csv.
   if (a.wall_slide) {
     const auto& noise = a.wall_slide->noise;
-    json slide = {{"applied", a.wall_slide->applied},
+    json slide = {{"applied", a.wall_slide->applied()},
                   {"iterations", a.wall_slide->iterations},
                   {"pairs_on_walls", a.wall_slide->pairs_on_walls},
                   {"noise_along_m", noise ? number(std::sqrt(noise->along_m2)) : json(nullptr)},

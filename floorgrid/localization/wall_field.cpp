@@ -20,37 +20,43 @@ void validate(const WallFieldOptions& o) {
     throw InputError("must be in (0, 1)", {}, 0, "wall_field.max_flatness");
 }
 
-namespace {
-
-/// The wall's normal at occupied cell (ix, iy): the direction of least scatter of the occupied
-/// cells around it, when that scatter is clearly smaller than the other (a line, not a blob).
-Eigen::Vector2f wall_normal(const OccupancyGrid& grid, int ix, int iy,
-                            const WallFieldOptions& options) {
+Eigen::Vector2d occupied_line_normal(const OccupancyGrid& grid, const Eigen::Vector2d& centre,
+                                     double radius, double max_flatness, int min_cells) {
   Eigen::Vector2d sum = Eigen::Vector2d::Zero();
   Eigen::Matrix2d outer = Eigen::Matrix2d::Zero();
   int n = 0;
-  const int r = options.normal_radius;
-  for (int dy = -r; dy <= r; ++dy) {
-    for (int dx = -r; dx <= r; ++dx) {
-      if (dx * dx + dy * dy > r * r || !grid.is_occupied(ix + dx, iy + dy))
+  const int y0 = static_cast<int>(std::floor(centre.y() - radius));
+  const int x0 = static_cast<int>(std::floor(centre.x() - radius));
+  for (int iy = y0; iy <= static_cast<int>(std::floor(centre.y() + radius)); ++iy) {
+    for (int ix = x0; ix <= static_cast<int>(std::floor(centre.x() + radius)); ++ix) {
+      const Eigen::Vector2d d = Eigen::Vector2d(ix + 0.5, iy + 0.5) - centre;
+      if (d.squaredNorm() > radius * radius || !grid.is_occupied(ix, iy))
         continue;
-      const Eigen::Vector2d d(dx, dy);
       sum += d;
       outer += d * d.transpose();
       ++n;
     }
   }
-  if (n < 3)
-    return Eigen::Vector2f::Zero();
+  if (n < std::max(min_cells, 1))
+    return Eigen::Vector2d::Zero();
   const Eigen::Vector2d mean = sum / n;
   const Eigen::Matrix2d scatter = outer / n - mean * mean.transpose();
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(scatter);
   const double small = eigen.eigenvalues()(0), large = eigen.eigenvalues()(1);
-  if (!(large > 0.0) || small > options.max_flatness * large)
-    return Eigen::Vector2f::Zero();
+  if (!(large > 0.0) || small > max_flatness * large)
+    return Eigen::Vector2d::Zero();
   // Cell axes are the grid's axes; the grid's yaw turns them into the map frame.
-  const Eigen::Vector2d normal = grid.geometry().origin.rotation() * eigen.eigenvectors().col(0);
-  return normal.normalized().cast<float>();
+  return (grid.geometry().origin.rotation() * eigen.eigenvectors().col(0)).normalized();
+}
+
+namespace {
+
+/// The wall's normal at occupied cell (ix, iy), from the occupied cells around it.
+Eigen::Vector2f wall_normal(const OccupancyGrid& grid, int ix, int iy,
+                            const WallFieldOptions& options) {
+  return occupied_line_normal(grid, {ix + 0.5, iy + 0.5}, options.normal_radius,
+                              options.max_flatness, 3)
+      .cast<float>();
 }
 
 /// Whether cell (ix, iy) or one of its eight neighbours is occupied.

@@ -20,6 +20,14 @@ struct WallPoint {
   bool one_sided = false;
 };
 
+/// The normal of the line the occupied cells near `centre` form (cell coordinates: cell (ix, iy)
+/// spans [ix, ix + 1) x [iy, iy + 1)), in the grid's frame: the direction of least scatter of the
+/// occupied cell centres within `radius` cells, when at least `min_cells` lie there and their
+/// scatter across is at most `max_flatness` of that along (a line, not a corner or a blob);
+/// zero otherwise.
+Eigen::Vector2d occupied_line_normal(const OccupancyGrid& grid, const Eigen::Vector2d& centre,
+                                     double radius, double max_flatness, int min_cells);
+
 /// Settings of a WallField.
 struct WallFieldOptions {
   /// Metres: cells farther than this from every wall have no nearest wall point (bounds the

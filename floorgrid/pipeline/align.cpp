@@ -19,28 +19,19 @@ double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-/// Each pair's distance from where the truth puts its plan point.
-ErrorStatistics pair_errors(const ReferencePairs& pairs, const GroundTruth& truth) {
-  std::vector<double> errors(static_cast<std::size_t>(pairs.size()));
-  for (Eigen::Index i = 0; i < pairs.size(); ++i)
-    errors[static_cast<std::size_t>(i)] =
-        (truth(pairs.points_in_plan.col(i)) - pairs.points_in_grid.col(i)).norm();
-  return error_statistics(std::move(errors));
-}
-
 /// Every model fitted to the pairs and judged against the truth and against the gridmap's
 /// walls; the model `auto` chose.
 void fit_and_judge_models(const AlignmentInputs& in, const AlignmentOptions& options, Alignment& a,
                           const AlignmentProgressCallback& progress) {
   const ReferencePairs& pairs = a.localization.pairs;
   const auto fit_start = Clock::now();
-  std::vector<ModelReport> reports =
-      compare_models(pairs, a.domain, a.truth, a.pair_noise, options.models,
-                     [&](const std::string& model, std::size_t done, std::size_t total) {
-                       if (progress)
-                         progress({"fit", model, done, total});
-                     },
-                     {a.localized_pairs.size() > 0 ? &a.localized_pairs : nullptr, a.pair_noise});
+  std::vector<ModelReport> reports = compare_models(
+      pairs, a.domain, a.truth, a.pair_noise, options.models,
+      [&](const std::string& model, std::size_t done, std::size_t total) {
+        if (progress)
+          progress({"fit", model, done, total});
+      },
+      a.localized_pairs.size() > 0 ? &a.localized_pairs : nullptr);
   const double total_seconds = seconds_since(fit_start);
   double wall_seconds = 0.0;
   for (ModelReport& r : reports) {
@@ -64,6 +55,14 @@ void fit_and_judge_models(const AlignmentInputs& in, const AlignmentOptions& opt
 }
 
 }  // namespace
+
+ErrorStatistics pair_errors(const ReferencePairs& pairs, const GroundTruth& truth) {
+  std::vector<double> errors(static_cast<std::size_t>(pairs.size()));
+  for (Eigen::Index i = 0; i < pairs.size(); ++i)
+    errors[static_cast<std::size_t>(i)] =
+        (truth(pairs.points_in_plan.col(i)) - pairs.points_in_grid.col(i)).norm();
+  return error_statistics(std::move(errors));
+}
 
 DatasetTruth dataset_truth(const AlignmentInputs& in) {
   if (in.truth_warp)
@@ -136,7 +135,7 @@ Alignment align(const AlignmentInputs& in, const AlignmentOptions& options,
     const auto slide_start = Clock::now();
     WallSlide slide = slide_pairs_along_walls(a.localization.pairs, in.gridmap, options.wall_slide,
                                               options.models.mapping);
-    if (slide.applied) {
+    if (slide.applied()) {
       a.localized_pairs = std::move(a.localization.pairs);
       a.localization.pairs = std::move(slide.pairs);
     }
@@ -153,7 +152,7 @@ Alignment align(const AlignmentInputs& in, const AlignmentOptions& options,
     a.pair_errors = pair_errors(a.localization.pairs, in.truth_warp);
   if (in.truth_warp && a.localized_pairs.size() > 0)
     a.localized_pair_errors = pair_errors(a.localized_pairs, in.truth_warp);
-  // Every model's std_m is learnt from the filters' own pairs (see ErrorModelSource).
+  // Every model's std_m is learnt from the filters' own pairs (see compare_models).
   const bool slid = a.localized_pairs.size() > 0;
   a.pair_noise = pair_noise(slid ? a.localized_pairs : a.localization.pairs);
 

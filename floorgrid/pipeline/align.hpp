@@ -107,6 +107,9 @@ using AlignmentProgressCallback = std::function<void(const AlignmentProgress&)>;
 Alignment align(const AlignmentInputs& inputs, const AlignmentOptions& options = {},
                 const AlignmentProgressCallback& progress = {});
 
+/// Each pair's distance from where the truth puts its plan point (`align` and `pairs` report it).
+ErrorStatistics pair_errors(const ReferencePairs& pairs, const GroundTruth& truth);
+
 /// A dataset's truth and the name of its domain: a simulator's warp ("warp"), or the
 /// hand-picked pairs through the Delaunay model ("manual_pairs_hull", the thesis's ground
 /// truth); kind "none" and no function without either. The one truth of `align` and `evaluate`.

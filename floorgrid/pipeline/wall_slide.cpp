@@ -1,12 +1,12 @@
 #include "floorgrid/pipeline/wall_slide.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 
 #include "floorgrid/core/error.hpp"
 #include "floorgrid/core/statistics.hpp"
 #include "floorgrid/core/validation.hpp"
+#include "floorgrid/localization/wall_field.hpp"
 #include "floorgrid/mapping/model_registry.hpp"
 #include "floorgrid/mapping/pair_preparation.hpp"
 
@@ -28,35 +28,10 @@ void validate(const WallSlideOptions& o) {
 Eigen::Vector2d wall_direction(const OccupancyGrid& gridmap, const Eigen::Vector2d& point_in_grid,
                                double radius, double max_flatness) {
   const GridGeometry& g = gridmap.geometry();
-  const Eigen::Vector2d c = g.to_cell_coordinates(point_in_grid);
-  const double r_cells = std::max(2.0, radius / g.resolution);
-  const int r = static_cast<int>(std::ceil(r_cells));
-  const int cx = static_cast<int>(std::floor(c.x())), cy = static_cast<int>(std::floor(c.y()));
-  // The scatter of the occupied cell centres near the point, in cell units.
-  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
-  Eigen::Matrix2d outer = Eigen::Matrix2d::Zero();
-  int n = 0;
-  for (int iy = cy - r; iy <= cy + r; ++iy) {
-    for (int ix = cx - r; ix <= cx + r; ++ix) {
-      if (!g.contains(ix, iy) || !gridmap.is_occupied(ix, iy))
-        continue;
-      const Eigen::Vector2d d = Eigen::Vector2d(ix + 0.5, iy + 0.5) - c;
-      if (d.squaredNorm() > r_cells * r_cells)
-        continue;
-      sum += d;
-      outer += d * d.transpose();
-      ++n;
-    }
-  }
-  if (n < 4)
-    return Eigen::Vector2d::Zero();
-  const Eigen::Vector2d mean = sum / n;
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(outer / n - mean * mean.transpose());
-  const double across = eigen.eigenvalues()(0), along = eigen.eigenvalues()(1);
-  if (!(along > 0.0) || across > max_flatness * along)
-    return Eigen::Vector2d::Zero();
-  // Cell axes are the grid's axes; the grid's yaw turns them into the map frame.
-  return (g.origin.rotation() * eigen.eigenvectors().col(1)).normalized();
+  const Eigen::Vector2d normal =
+      occupied_line_normal(gridmap, g.to_cell_coordinates(point_in_grid),
+                           std::max(2.0, radius / g.resolution), max_flatness, 4);
+  return {-normal.y(), normal.x()};
 }
 
 WallSlide slide_pairs_along_walls(const ReferencePairs& pairs, const OccupancyGrid& gridmap,
@@ -100,7 +75,6 @@ WallSlide slide_pairs_along_walls(const ReferencePairs& pairs, const OccupancyGr
     }
     ++out.iterations;
   }
-  out.applied = out.iterations > 0;
   std::vector<double> slides;
   slides.reserve(out.pairs_on_walls);
   for (Eigen::Index i = 0; i < n; ++i) {

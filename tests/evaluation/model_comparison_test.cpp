@@ -1,4 +1,4 @@
-// compare_models with an ErrorModelSource: models fitted on one set of pairs (align's slid
+// compare_models with error pairs: models fitted on one set of pairs (align's slid
 // pairs) state the cross-validated error and std_m of another (the filters' own).
 #include "floorgrid/evaluation/model_comparison.hpp"
 
@@ -53,7 +53,7 @@ TEST(ModelComparison, CvAndStdComeFromTheErrorSourceWhileTheFitUsesThePairs) {
   const std::vector<ModelReport> own =
       compare_models(exact, no_domain, std::nullopt, pair_noise(exact), options);
   const std::vector<ModelReport> other =
-      compare_models(exact, no_domain, std::nullopt, std::nullopt, options, {}, {&noisy, noise});
+      compare_models(exact, no_domain, std::nullopt, noise, options, {}, &noisy);
   ASSERT_TRUE(own[0].model && other[0].model);
 
   // Fitted on the exact pairs either way: the same map.

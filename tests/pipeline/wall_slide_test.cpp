@@ -90,7 +90,7 @@ TEST(WallSlide, MovesPairsAlongTheirWallOnlyAndTowardsTheTruth) {
   const WallSlide slide = slide_pairs_along_walls(pairs, grid);
   ASSERT_EQ(slide.pairs.size(), pairs.size());
   EXPECT_EQ(slide.iterations, 2u);
-  EXPECT_TRUE(slide.applied);
+  EXPECT_TRUE(slide.applied());
   ASSERT_TRUE(slide.noise);
   EXPECT_GT(slide.noise->along_m2, 4.0 * slide.noise->across_m2);
   EXPECT_GT(slide.pairs_on_walls, static_cast<std::size_t>(pairs.size()) * 8 / 10);
@@ -157,7 +157,7 @@ TEST(WallSlide, PairsAsUnsureAcrossTheirWallsAsAlongThemStay) {
   const WallSlide slide = slide_pairs_along_walls(pairs, corridor());
   ASSERT_TRUE(slide.noise);
   EXPECT_NEAR(std::sqrt(slide.noise->along_m2 / slide.noise->across_m2), 1.0, 0.3);
-  EXPECT_FALSE(slide.applied);
+  EXPECT_FALSE(slide.applied());
   EXPECT_EQ(slide.iterations, 0u);
   EXPECT_EQ(slide.pairs.points_in_grid, pairs.points_in_grid);
 }
@@ -178,7 +178,7 @@ TEST(WallSlide, PairsTheSmootherCannotFitStay) {
   const WallSlide slide = slide_pairs_along_walls(pairs, corridor(), {.smoother = "tps"});
   ASSERT_TRUE(slide.noise);
   EXPECT_GT(slide.noise->along_m2, 2.25 * slide.noise->across_m2);
-  EXPECT_FALSE(slide.applied);
+  EXPECT_FALSE(slide.applied());
   EXPECT_EQ(slide.iterations, 0u);
   EXPECT_EQ(slide.pairs.points_in_grid, pairs.points_in_grid);
 }
