@@ -61,11 +61,14 @@ void run_align(const std::string& dataset, const std::string& out, const JobOpti
   io::AlignmentTimings timings;
   timings.load =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - load_start).count();
+  // Without a log the pairs come from the maps alone.
+  static const RobotLog no_log;
+  const bool from_run = options.align.pairs_from != PairSource::maps;
   const AlignmentInputs inputs{d.plan_grid,
                                d.plan ? &*d.plan : nullptr,
                                d.plan_wall_samples,
                                d.gridmap,
-                               dataset_log(d),
+                               d.log && from_run ? *d.log : no_log,
                                start_poses(d),
                                d.manifest.floorplan_scale,
                                warp_truth(d),
@@ -104,7 +107,9 @@ void run_align(const std::string& dataset, const std::string& out, const JobOpti
   // made no pairs is a failure, not a result; its report still tells what happened.
   try {
     require_pairs(a.localization, d);
-    require_plan_match(a.plan_match, d, options.align.localization.plan_location);
+    // Pairs from the maps alone were judged by the maps' own fitness (require_localized).
+    if (a.pairs_from != PairSource::maps)
+      require_plan_match(a.plan_match, d, options.align.localization.plan_location);
   } catch (...) {
     write_report(out);
     throw;
@@ -118,13 +123,28 @@ void add_align_command(CLI::App& root) {
       "align", "The main job: pairs, every model fitted and judged, overlays and metrics");
   struct Args {
     std::string dataset, out;
+    std::optional<std::string> pairs_from;
+    bool maps_only = false;
   };
   auto args = std::make_shared<Args>();
   auto job = std::make_shared<JobArgs>();
   cmd->add_option("DATASET", args->dataset, "dataset.yaml or its folder")->required();
   cmd->add_option("--out", args->out, "output folder (created if needed)")->required();
+  cmd->add_option("--pairs-from", args->pairs_from,
+                  "where the pairs come from: the robot's run (run, the default with a log), "
+                  "the two maps alone (maps: registered, then bent onto each other; the "
+                  "default without a log) or both")
+      ->check(CLI::IsMember({"run", "maps", "both"}));
+  cmd->add_flag("--maps-only", args->maps_only, "the same as --pairs-from maps");
   add_job_options(cmd, job, true);
-  cmd->callback([args, job] { run_align(args->dataset, args->out, job_options(*job)); });
+  cmd->callback([args, job] {
+    JobOptions options = job_options(*job);
+    if (args->pairs_from)
+      options.align.pairs_from = parse_pair_source(*args->pairs_from);
+    if (args->maps_only)
+      options.align.pairs_from = PairSource::maps;
+    run_align(args->dataset, args->out, options);
+  });
 }
 
 }  // namespace floorgrid::app

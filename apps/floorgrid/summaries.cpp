@@ -53,6 +53,16 @@ void print_wall_slide(const WallSlide& s, std::size_t pairs,
 
 void print_localization(const DualLocalization& l,
                         const std::optional<ErrorStatistics>& pair_errors) {
+  if (l.scans.empty()) {  // pairs from the maps alone: their story is in the notes
+    fmt::print("pairs       {} from the maps alone\n", l.pairs.size());
+    for (const std::string& note : l.notes)
+      fmt::print("note        {}\n", note);
+    if (pair_errors) {
+      fmt::print("pair error  median {:.3f} m, mean {:.3f} m against the truth\n",
+                 pair_errors->median, pair_errors->mean);
+    }
+    return;
+  }
   std::size_t usable = 0;
   for (const ScanRecord& r : l.scans)
     usable += r.pairs > 0;
@@ -143,8 +153,9 @@ void print_models(const Alignment& a) {
           "cv_m: mean held-out error of {}-fold {} cross-validation{}{}\n", cv->folds, cv->kind,
           cv->kind == "blocked" ? fmt::format(" (whole {:.2f} m blocks held out)", cv->block_size)
                                 : std::string(),
-          a.wall_slide && a.wall_slide->applied() ? ", on the pairs before the wall slide (as std_m)"
-                                                : "");
+          a.wall_slide && a.wall_slide->applied()
+              ? ", on the pairs before the wall slide (as std_m)"
+              : "");
       break;
     }
   }

@@ -143,7 +143,31 @@ json metrics_json(const Alignment& a, const std::string& dataset, const Alignmen
     }
     pairs["wall_slide"] = slide;
   }
+  pairs["source"] = to_string(a.pairs_from);
   j["pairs"] = pairs;
+  if (a.maps) {
+    const MapAlignment& m = *a.maps;
+    const ScoredSimilarity& r = m.registration.best;
+    j["maps_only"] = {{"accepted", m.accepted},
+                      {"fitness", number(m.fitness)},
+                      {"on_walls", number(m.on_walls)},
+                      {"in_free_space", number(m.in_free_space)},
+                      {"pairs", m.pairs.size()},
+                      {"points", m.points},
+                      {"stages", m.stages},
+                      {"median_distance_m", number(m.median_distance_m)},
+                      {"diagnosis", m.diagnosis},
+                      {"seconds", number(m.seconds)},
+                      {"registration",
+                       {{"scale", number(r.transform.scale)},
+                        {"theta_deg", number(r.transform.theta * 180.0 / 3.14159265358979323846)},
+                        {"score", number(r.score)},
+                        {"on_walls", number(r.on_walls)},
+                        {"in_free_space", number(r.in_free_space)},
+                        {"runner_up_score", number(m.registration.runner_up.score)},
+                        {"correlation", m.registration.correlation},
+                        {"seconds", number(m.registration.seconds)}}}};
+  }
   j["plan_scale"] = number(l.plan_scale);
   j["plan_scale_std"] = number(l.plan_scale_std);
   j["plan_scale_estimated"] = l.plan_scale_estimated;

@@ -850,6 +850,16 @@ void visit(OptionVisitor& v, ScaleSearchOptions& o) {
           {.unit = "scans", .doc = "Scans profiled at most", .choices = {}});
 }
 
+void visit(OptionVisitor& v, MapCorrelationOptions& o) {
+  v.field("cell", o.cell, {.unit = "m", .doc = "Cell of the coarse images", .choices = {}});
+  v.field("closeness", o.closeness,
+          {.unit = "m", .doc = "Sigma of a plan wall's closeness at that level", .choices = {}});
+  v.field("scale_step", o.scale_step,
+          {.unit = "", .doc = "Relative step of the scale lattice", .choices = {}});
+  v.field("peaks", o.peaks,
+          {.unit = "", .doc = "Candidates kept over all turns and scales", .choices = {}});
+}
+
 void visit(OptionVisitor& v, MapRegistrationOptions& o) {
   v.field("min_scale", o.min_scale,
           {.unit = "", .doc = "Plan metres per world metre searched, from", .choices = {}});
@@ -872,6 +882,12 @@ void visit(OptionVisitor& v, MapRegistrationOptions& o) {
           {.unit = "m",
            .doc = "A plan wall this far inside the gridmap's free space counts against",
            .choices = {}});
+  v.field("correlation_below", o.correlation_below,
+          {.unit = "",
+           .doc = "Below this best profile score, a 2-D correlation search adds candidates "
+                  "(> 1: always, < -1: never)",
+           .choices = {}});
+  v.group("correlation", "That 2-D correlation search", [&] { visit(v, o.correlation); });
 }
 
 void visit(OptionVisitor& v, PlanLocationOptions& o) {
@@ -1068,11 +1084,54 @@ void visit(OptionVisitor& v, WallSlideOptions& o) {
            .choices = {}});
 }
 
+void visit(OptionVisitor& v, MapAlignmentOptions& o) {
+  v.field(
+      "first_spacing", o.first_spacing,
+      {.unit = "m", .doc = "The displacement lattice's node spacing, first stage", .choices = {}});
+  v.field("last_spacing", o.last_spacing,
+          {.unit = "m", .doc = "and in the finest stage (halved between)", .choices = {}});
+  v.field("first_radius", o.first_radius,
+          {.unit = "m",
+           .doc = "A gridmap wall point matches a plan wall this near, first stage",
+           .choices = {}});
+  v.field("last_radius", o.last_radius,
+          {.unit = "m", .doc = "and in the finest stage", .choices = {}});
+  v.field("rounds", o.rounds,
+          {.unit = "", .doc = "Correspondence rounds per stage", .choices = {}});
+  v.field("stiffness", o.stiffness,
+          {.unit = "", .doc = "The lattice's membrane weight", .choices = {}});
+  v.field("point_spacing", o.point_spacing,
+          {.unit = "m", .doc = "Between the gridmap wall points used", .choices = {}});
+  v.field("max_normal_angle", o.max_normal_angle,
+          {.unit = "deg", .doc = "Matched walls' directions differ at most this", .choices = {}});
+  v.field("pair_radius", o.pair_radius,
+          {.unit = "m",
+           .doc = "Final matches this near their plan wall become the pairs",
+           .choices = {}});
+  v.field("min_fitness", o.min_fitness,
+          {.unit = "",
+           .doc = "Accepted when on_walls - in_free_space after the refinement is at least this",
+           .choices = {}});
+  v.field("correlation_below", o.correlation_below,
+          {.unit = "",
+           .doc = "The registration's 2-D correlation search below this profile score (> 1: "
+                  "always)",
+           .choices = {}});
+}
+
 void visit(OptionVisitor& v, AlignmentOptions& o) {
   v.group("localization", "How pairs are made", [&] { visit(v, o.localization); });
   v.group("models", "Which models, cross-validation, back-and-forth", [&] { visit(v, o.models); });
   v.group("wall_slide", "The pairs slid along their gridmap walls before the models are fitted",
           [&] { visit(v, o.wall_slide); });
+  enum_field(v, "pairs_from", o.pairs_from,
+             {{"run", PairSource::run}, {"maps", PairSource::maps}, {"both", PairSource::both}},
+             "Where the pairs come from: the robot's run, the two maps alone, or both (a "
+             "dataset without a log: the maps)");
+  v.group("maps_only",
+          "Pairs from the maps alone (no log, or --pairs-from maps|both): registration, then a "
+          "non-rigid refinement",
+          [&] { visit(v, o.maps_only); });
   v.field("near_pairs", o.near_pairs,
           {.unit = "m",
            .doc = "Wall distances are also summarized over the plan wall points this close to a "

@@ -1,8 +1,11 @@
 #include "floorgrid/pipeline/align.hpp"
 
+#include <fmt/format.h>
 #include <algorithm>
 #include <chrono>
+#include <numbers>
 
+#include "floorgrid/core/error.hpp"
 #include "floorgrid/core/statistics.hpp"
 #include "floorgrid/geometry/point_index.hpp"
 #include "floorgrid/mapping/model_selection.hpp"
@@ -112,10 +115,98 @@ WallDistance wall_distance(const Eigen::Matrix2Xd& samples, const Eigen::Matrix2
   return w;
 }
 
+const char* to_string(PairSource source) {
+  switch (source) {
+    case PairSource::run:
+      return "run";
+    case PairSource::maps:
+      return "maps";
+    case PairSource::both:
+      return "both";
+  }
+  return "run";
+}
+
+PairSource parse_pair_source(const std::string& name, const std::string& field) {
+  for (const PairSource s : {PairSource::run, PairSource::maps, PairSource::both}) {
+    if (name == to_string(s))
+      return s;
+  }
+  throw InputError(field + " must be run, maps or both (got \"" + name + "\")");
+}
+
+namespace {
+
+// The pairs of the maps' alignment as the localization's: its status, scale and story.
+void localize_on_maps(const AlignmentInputs& in, const AlignmentOptions& options, Alignment& a) {
+  a.maps = align_maps(in.gridmap, in.plan_grid, plan_walls_of(in.plan),
+                      options.localization.plan_location.map_registration, options.maps_only);
+  const MapAlignment& m = *a.maps;
+  DualLocalization& l = a.localization;
+  const MapSimilarity& s = m.registration.best.transform;
+  if (m.registration.found) {
+    l.plan_scale = 1.0 / s.scale;
+    l.plan_scale_estimated = true;
+    l.notes.push_back(fmt::format(
+        "maps only: the gridmap registered on the plan at scale {:.4f}, turned {:.1f} deg, score "
+        "{:.2f} (runner-up {:.2f}), then bent onto it in {} stages: {} of {} gridmap wall points "
+        "within {:.2f} m of a plan wall became pairs; fitness {:.2f} ({:.0f}% of the gridmap's "
+        "walls on the plan's, {:.0f}% of the plan's walls in free space) in {:.1f} s",
+        s.scale, s.theta * 180.0 / std::numbers::pi, m.registration.best.score,
+        m.registration.runner_up.score, m.stages, m.pairs.size(), m.points,
+        options.maps_only.pair_radius, m.fitness, 100.0 * m.on_walls, 100.0 * m.in_free_space,
+        m.seconds));
+  }
+  if (!m.accepted) {
+    l.status.ok = false;
+    l.status.field = "floorplan";
+    l.status.message = fmt::format(
+        "no alignment found from the maps alone: {} (fitness {:.2f}, at least {:.2f} needed: "
+        "{:.0f}% of the gridmap's walls on the plan's, {:.0f}% of the plan's walls in space the "
+        "gridmap saw free). Check that the plan and the gridmap show the same floor, or give "
+        "a robot run (log:)",
+        m.diagnosis, m.fitness, options.maps_only.min_fitness, 100.0 * m.on_walls,
+        100.0 * m.in_free_space);
+    return;
+  }
+  l.pairs = m.pairs;
+}
+
+// The maps' pairs after the run's.
+void append_pairs(ReferencePairs& to, const ReferencePairs& from) {
+  const Eigen::Index n = to.size(), k = from.size();
+  to.points_in_plan.conservativeResize(2, n + k);
+  to.points_in_grid.conservativeResize(2, n + k);
+  to.points_in_plan.rightCols(k) = from.points_in_plan;
+  to.points_in_grid.rightCols(k) = from.points_in_grid;
+  if (to.has_weights() || from.has_weights()) {
+    Eigen::VectorXd w(n + k);
+    for (Eigen::Index i = 0; i < n; ++i)
+      w[i] = to.weight(i);
+    for (Eigen::Index i = 0; i < k; ++i)
+      w[n + i] = from.weight(i);
+    to.weights = w;
+  }
+}
+
+// The pairs judged: the truth, the plan match, every model fitted and judged.
+Alignment judge_alignment(const AlignmentInputs& in, const AlignmentOptions& options, Alignment& a,
+                          const AlignmentProgressCallback& progress);
+
+}  // namespace
+
 Alignment align(const AlignmentInputs& in, const AlignmentOptions& options,
                 const AlignmentProgressCallback& progress) {
   validate(options.wall_slide);
+  validate(options.maps_only);
   Alignment a;
+  a.pairs_from = in.log.scans.empty() ? PairSource::maps : options.pairs_from;
+  if (a.pairs_from == PairSource::maps) {
+    if (progress)
+      progress({"localize", "maps", 0, 1});
+    localize_on_maps(in, options, a);
+    return judge_alignment(in, options, a, progress);
+  }
   // The reference pairs, by dual Monte Carlo localization.
   a.localization = localize_dual({.plan = in.plan_grid,
                                   .gridmap = in.gridmap,
@@ -143,6 +234,32 @@ Alignment align(const AlignmentInputs& in, const AlignmentOptions& options,
     a.wall_slide = std::move(slide);
     a.wall_slide_seconds = seconds_since(slide_start);
   }
+  // The pairs' noise is the run's: the maps' pairs have no visits to compare.
+  const bool slid = a.localized_pairs.size() > 0;
+  a.pair_noise = pair_noise(slid ? a.localized_pairs : a.localization.pairs);
+  if (a.pairs_from == PairSource::both) {
+    if (progress)
+      progress({"localize", "maps", 0, 1});
+    Alignment maps;
+    localize_on_maps(in, options, maps);
+    a.maps = std::move(maps.maps);
+    a.localization.notes.insert(a.localization.notes.end(), maps.localization.notes.begin(),
+                                maps.localization.notes.end());
+    if (maps.localization.status.ok) {
+      append_pairs(a.localization.pairs, a.maps->pairs);
+      if (slid)
+        append_pairs(a.localized_pairs, a.maps->pairs);
+    }
+  }
+  return judge_alignment(in, options, a, progress);
+}
+
+namespace {
+
+Alignment judge_alignment(const AlignmentInputs& in, const AlignmentOptions& options, Alignment& a,
+                          const AlignmentProgressCallback& progress) {
+  if (!a.localization.status.ok)
+    return std::move(a);
 
   // The truth, where it holds, and the pairs against it.
   const DatasetTruth truth = dataset_truth(in);
@@ -152,9 +269,6 @@ Alignment align(const AlignmentInputs& in, const AlignmentOptions& options,
     a.pair_errors = pair_errors(a.localization.pairs, in.truth_warp);
   if (in.truth_warp && a.localized_pairs.size() > 0)
     a.localized_pair_errors = pair_errors(a.localized_pairs, in.truth_warp);
-  // Every model's std_m is learnt from the filters' own pairs (see compare_models).
-  const bool slid = a.localized_pairs.size() > 0;
-  a.pair_noise = pair_noise(slid ? a.localized_pairs : a.localization.pairs);
 
   a.plan_match =
       judge_plan_match(in.gridmap, in.plan_grid, plan_walls_of(in.plan), a.localization.pairs,
@@ -162,10 +276,15 @@ Alignment align(const AlignmentInputs& in, const AlignmentOptions& options,
 
   // Every model, fitted and judged: not on pairs between two different buildings.
   const PlanLocationOptions& location = options.localization.plan_location;
-  if (a.localization.pairs.size() > 0 && plan_match_accepted(a.plan_match, location.min_plan_match,
-                                                             location.max_plan_walls_in_free_space))
+  // (The maps' own alignment judged its fit: the pairs' similarity cannot, on a bent map.)
+  if (a.localization.pairs.size() > 0 &&
+      (a.pairs_from == PairSource::maps ||
+       plan_match_accepted(a.plan_match, location.min_plan_match,
+                           location.max_plan_walls_in_free_space)))
     fit_and_judge_models(in, options, a, progress);
-  return a;
+  return std::move(a);
 }
+
+}  // namespace
 
 }  // namespace floorgrid

@@ -11,6 +11,7 @@
 #include "floorgrid/evaluation/model_evaluation.hpp"
 #include "floorgrid/mapping/pair_noise.hpp"
 #include "floorgrid/pipeline/dual_localizer.hpp"
+#include "floorgrid/pipeline/map_alignment.hpp"
 #include "floorgrid/pipeline/plan_match.hpp"
 #include "floorgrid/pipeline/wall_slide.hpp"
 
@@ -29,12 +30,28 @@ struct AlignmentInputs {
   const ReferencePairs* manual_pairs = nullptr;  ///< hand-picked truth pairs, or null
 };
 
+/// Where the reference pairs come from.
+enum class PairSource {
+  run,   ///< dual Monte Carlo localization of the robot's run
+  maps,  ///< the gridmap aligned to the plan from the two maps alone (align_maps)
+  both,  ///< the run's pairs and the maps' together
+};
+
+/// The name options and outputs spell: "run", "maps" or "both".
+const char* to_string(PairSource source);
+/// The source `name` spells; throws InputError naming `field` for another name.
+PairSource parse_pair_source(const std::string& name, const std::string& field = "--pairs-from");
+
 /// Every setting of the main job.
 struct AlignmentOptions {
   DualLocalizerOptions localization;  ///< how pairs are made
   ModelComparisonOptions models;      ///< which models, cross-validation, back-and-forth
   /// The pairs slid along their gridmap walls before any model is fitted (0 rounds: not).
   WallSlideOptions wall_slide;
+  /// Where the pairs come from (a dataset without a log: the maps, whatever this says).
+  PairSource pairs_from = PairSource::run;
+  /// How the maps are aligned when the pairs come from them.
+  MapAlignmentOptions maps_only;
   /// Metres: wall distances are also summarized over the plan wall points this close to a
   /// pair (where the models have data).
   double near_pairs = 2.0;
@@ -75,6 +92,10 @@ struct Alignment {
   DualLocalization localization;
   /// The pairs as the filters made them, before the wall slide (empty when none slid).
   ReferencePairs localized_pairs;
+  PairSource pairs_from = PairSource::run;  ///< where the pairs came from
+  /// The maps' alignment, when pairs came from it (its `pairs` are in localization.pairs, or
+  /// appended to the run's there).
+  std::optional<MapAlignment> maps;
   /// What the wall slide did (its `pairs` left empty: they are localization.pairs).
   std::optional<WallSlide> wall_slide;
   double wall_slide_seconds = 0.0;  ///< of the wall slide

@@ -7,6 +7,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "floorgrid/core/validation.hpp"
 #include "floorgrid/maps/distance_field.hpp"
 #include "floorgrid/maps/wall_surface_field.hpp"
 
@@ -284,16 +285,34 @@ class Scorer {
   Eigen::Vector2d centre_ = Eigen::Vector2d::Zero();
 };
 
+// The turns searched: both maps turned to their dominant directions and four quarter turns
+// when both have one, else 36 turns of 10 degrees.
+struct Turns {
+  double grid_angle = 0.0;
+  double plan_angle = 0.0;
+  std::vector<double> turns;
+};
+
+Turns search_turns(const Direction& grid_dir, const Direction& plan_dir) {
+  const bool manhattan = grid_dir.strength > 2.0 && plan_dir.strength > 2.0;
+  Turns t;
+  t.grid_angle = manhattan ? grid_dir.angle : 0.0;
+  t.plan_angle = manhattan ? plan_dir.angle : 0.0;
+  const int count = manhattan ? 4 : 36;
+  const double step = manhattan ? kPi / 2 : 10.0 * kDegree;
+  for (int k = 0; k < count; ++k)
+    t.turns.push_back(k * step);
+  return t;
+}
+
 // Candidates from the wall profiles: for every turn and scale, the best shift along each axis.
 std::vector<Candidate> profile_candidates(const std::vector<Eigen::Vector2d>& grid_all,
                                           const std::vector<Eigen::Vector2d>& plan_all,
                                           const Direction& grid_dir, const Direction& plan_dir,
                                           const MapRegistrationOptions& o) {
-  const bool manhattan = grid_dir.strength > 2.0 && plan_dir.strength > 2.0;
-  const int turns = manhattan ? 4 : 36;
-  const double turn_step = manhattan ? kPi / 2 : 10.0 * kDegree;
-  const double grid_angle = manhattan ? grid_dir.angle : 0.0;
-  const double plan_angle = manhattan ? plan_dir.angle : 0.0;
+  const Turns search = search_turns(grid_dir, plan_dir);
+  const double grid_angle = search.grid_angle;
+  const double plan_angle = search.plan_angle;
   const double bin = o.profile_bin;
 
   std::vector<double> plan_x, plan_y;
@@ -308,8 +327,7 @@ std::vector<Candidate> profile_candidates(const std::vector<Eigen::Vector2d>& gr
   std::vector<Candidate> all;
   const int scales =
       static_cast<int>(std::ceil(std::log(o.max_scale / o.min_scale) / o.scale_step)) + 1;
-  for (int k = 0; k < turns; ++k) {
-    const double turn = k * turn_step;
+  for (const double turn : search.turns) {
     std::vector<double> gx, gy;
     for (const Eigen::Vector2d& g : grid_all) {
       const Eigen::Vector2d r = rotate(rotate(g, -grid_angle), turn);
@@ -385,6 +403,27 @@ bool distinct(const MapSimilarity& a, const MapSimilarity& b, const Eigen::Vecto
 
 }  // namespace
 
+void validate(const MapRegistrationOptions& o, const std::string& prefix) {
+  const auto positive = [&](double value, const char* field) {
+    require_option(value > 0.0 && std::isfinite(value), prefix + field, value, "> 0");
+  };
+  positive(o.min_scale, "min_scale");
+  require_option(o.max_scale >= o.min_scale && std::isfinite(o.max_scale), prefix + "max_scale",
+                 o.max_scale, ">= min_scale");
+  positive(o.scale_step, "scale_step");
+  positive(o.profile_bin, "profile_bin");
+  positive(o.sigma, "sigma");
+  require_option(o.candidates >= 1, prefix + "candidates", o.candidates, ">= 1");
+  require_option(o.max_points >= 10, prefix + "max_points", o.max_points, ">= 10");
+  require_option(std::isfinite(o.correlation_below), prefix + "correlation_below",
+                 o.correlation_below, "a number");
+  positive(o.correlation.cell, "correlation.cell");
+  positive(o.correlation.closeness, "correlation.closeness");
+  positive(o.correlation.scale_step, "correlation.scale_step");
+  require_option(o.correlation.peaks >= 1, prefix + "correlation.peaks", o.correlation.peaks,
+                 ">= 1");
+}
+
 Eigen::Vector2d MapSimilarity::apply(const Eigen::Vector2d& g) const {
   return scale * (rotation_2d(theta) * g) + translation;
 }
@@ -400,6 +439,7 @@ Pose2 MapSimilarity::apply(const Pose2& pose) const {
 
 MapRegistration register_maps(const OccupancyGrid& gridmap, const OccupancyGrid& plan,
                               PlanWalls plan_walls, const MapRegistrationOptions& options) {
+  validate(options);
   const auto clock = std::chrono::steady_clock::now();
   MapRegistration result;
   const std::vector<Eigen::Vector2d> grid_cells = wall_points(gridmap);
@@ -411,12 +451,26 @@ MapRegistration register_maps(const OccupancyGrid& gridmap, const OccupancyGrid&
 
   const std::vector<Eigen::Vector2d> grid_all = thinned(grid_cells, 40000);
   const std::vector<Eigen::Vector2d> plan_all = thinned(plan_cells, 40000);
+  const Direction grid_dir = dominant_direction(gridmap, grid_all);
+  const Direction plan_dir = dominant_direction(plan, plan_all);
   const std::vector<Candidate> candidates =
-      profile_candidates(grid_all, plan_all, dominant_direction(gridmap, grid_all),
-                         dominant_direction(plan, plan_all), options);
+      profile_candidates(grid_all, plan_all, grid_dir, plan_dir, options);
   std::vector<ScoredSimilarity> refined;
-  for (const Candidate& c : candidates)
+  double best_score = -1.0;
+  for (const Candidate& c : candidates) {
     refined.push_back(refine_in_steps(scorer, c.transform, options.sigma));
+    best_score = std::max(best_score, refined.back().score);
+  }
+  if (best_score < options.correlation_below) {
+    result.correlation = true;
+    const Turns turns = search_turns(grid_dir, plan_dir);
+    CorrelationInputs inputs{gridmap,          grid_all,    plan_all,          turns.grid_angle,
+                             turns.plan_angle, turns.turns, options.min_scale, options.max_scale};
+    for (const CorrelationCandidate& c : correlation_candidates(inputs, options.correlation)) {
+      const MapSimilarity start{c.scale, c.theta, c.translation};
+      refined.push_back(refine_in_steps(scorer, start, options.sigma));
+    }
+  }
   result.candidates = refined.size();
   std::sort(refined.begin(), refined.end(),
             [](const ScoredSimilarity& a, const ScoredSimilarity& b) { return a.score > b.score; });

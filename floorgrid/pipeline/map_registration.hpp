@@ -1,11 +1,13 @@
 #pragma once
 
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include "floorgrid/geometry/pose2.hpp"
 #include "floorgrid/maps/occupancy_grid.hpp"
 #include "floorgrid/maps/vector_floorplan.hpp"
+#include "floorgrid/pipeline/map_correlation.hpp"
 
 namespace floorgrid {
 
@@ -27,7 +29,19 @@ struct MapRegistrationOptions {
   /// A plan wall that the transform puts more than this (world metres) inside the gridmap's
   /// observed free space is a wall the robot would have seen: it counts against the transform.
   double free_violation_distance = 0.4;
+  /// When the wall profiles' best candidate scores below this in 2-D, candidates of a 2-D
+  /// correlation search are refined and scored too (> 1: always, < -1: never). A partial or
+  /// bent gridmap's profiles do not line up with the whole plan's: the maps-only alignment
+  /// always searches (MapAlignmentOptions::correlation_below). A run's registration does not by
+  /// default: on fr079's locally wrong drawing it found a similarity scoring 0.33 where the
+  /// profiles' scored 0.29, and every model's error doubled (gp 0.46 -> 0.97 m).
+  double correlation_below = -2.0;
+  MapCorrelationOptions correlation;  ///< that search's lattice
 };
+
+/// Checks `options`; throws InputError naming `<prefix><field>`.
+void validate(const MapRegistrationOptions& options,
+              const std::string& prefix = "align.localization.plan_location.map_registration.");
 
 /// A similarity from the gridmap frame into the plan frame: p = scale R(theta) g + t.
 struct MapSimilarity {
@@ -60,6 +74,7 @@ struct MapRegistration {
   /// clearly the best won.
   ScoredSimilarity runner_up;
   std::size_t candidates = 0;  ///< verified in 2D
+  bool correlation = false;    ///< whether the 2-D correlation search ran
   double seconds = 0.0;        ///< wall clock
 };
 

@@ -1,0 +1,251 @@
+#include "floorgrid/pipeline/map_alignment.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <numbers>
+
+#include "floorgrid/core/statistics.hpp"
+#include "floorgrid/core/validation.hpp"
+#include "floorgrid/geometry/displacement_lattice.hpp"
+#include "floorgrid/geometry/pose2.hpp"
+#include "floorgrid/maps/distance_field.hpp"
+#include "floorgrid/maps/wall_surface_field.hpp"
+#include "floorgrid/pipeline/wall_slide.hpp"
+
+namespace floorgrid {
+
+namespace {
+
+// A gridmap wall point and its wall's normal in the grid (zero at a corner or a blob).
+struct WallPoint {
+  Eigen::Vector2d point;
+  Eigen::Vector2d normal;
+};
+
+// The centres of the occupied cells, one per `spacing`-metre bin (the first met), with their
+// walls' normals.
+std::vector<WallPoint> gridmap_wall_points(const OccupancyGrid& grid, double spacing) {
+  std::map<std::pair<long, long>, bool> taken;
+  std::vector<WallPoint> points;
+  for (int iy = 0; iy < grid.height(); ++iy) {
+    for (int ix = 0; ix < grid.width(); ++ix) {
+      if (grid.state(ix, iy) != CellState::occupied)
+        continue;
+      const Eigen::Vector2d c = grid.geometry().cell_center(ix, iy);
+      const std::pair<long, long> bin{std::lround(std::floor(c.x() / spacing)),
+                                      std::lround(std::floor(c.y() / spacing))};
+      if (!taken.emplace(bin, true).second)
+        continue;
+      const Eigen::Vector2d along = wall_direction(grid, c, 0.25, 0.25);
+      points.push_back({c, Eigen::Vector2d(-along.y(), along.x())});
+    }
+  }
+  return points;
+}
+
+// The occupied cell centres of a grid, one per `spacing`-metre bin.
+std::vector<Eigen::Vector2d> thinned_walls(const OccupancyGrid& grid, double spacing) {
+  std::map<std::pair<long, long>, bool> taken;
+  std::vector<Eigen::Vector2d> points;
+  for (int iy = 0; iy < grid.height(); ++iy) {
+    for (int ix = 0; ix < grid.width(); ++ix) {
+      if (grid.state(ix, iy) != CellState::occupied)
+        continue;
+      const Eigen::Vector2d c = grid.geometry().cell_center(ix, iy);
+      if (taken
+              .emplace(std::pair<long, long>{std::lround(std::floor(c.x() / spacing)),
+                                             std::lround(std::floor(c.y() / spacing))},
+                       true)
+              .second)
+        points.push_back(c);
+    }
+  }
+  return points;
+}
+
+// The gridmap mapped into the plan: the similarity, then the lattice's displacement there.
+struct PlanWarp {
+  MapSimilarity similarity;
+  DisplacementLattice lattice;
+
+  Eigen::Vector2d start(const Eigen::Vector2d& g) const { return similarity.apply(g); }
+  Eigen::Vector2d apply(const Eigen::Vector2d& g) const {
+    const Eigen::Vector2d p0 = similarity.apply(g);
+    return p0 + lattice.at(p0);
+  }
+  // A plan point in the gridmap, to first order (the displacement is smooth and small).
+  Eigen::Vector2d inverse(const Eigen::Vector2d& p) const {
+    return similarity.inverse(p - lattice.at(p));
+  }
+};
+
+// A gridmap wall point matched to the plan's nearest wall surface: where it lies on the plan
+// now, the unit normal of that surface, and its distance to it (plan metres).
+struct Match {
+  bool found = false;
+  Eigen::Vector2d at = Eigen::Vector2d::Zero();
+  Eigen::Vector2d normal = Eigen::Vector2d::Zero();
+  double distance = 0.0;
+};
+
+Match match_to_plan(const WallSurfaceField& field, const PlanWarp& warp, const WallPoint& w,
+                    double radius_plan, double step, double min_cosine) {
+  Match m;
+  m.at = warp.apply(w.point);
+  m.distance = field.distance(m.at);
+  if (!(m.distance <= radius_plan))
+    return m;
+  const Eigen::Vector2d gradient(field.distance(m.at + Eigen::Vector2d(step, 0)) -
+                                     field.distance(m.at - Eigen::Vector2d(step, 0)),
+                                 field.distance(m.at + Eigen::Vector2d(0, step)) -
+                                     field.distance(m.at - Eigen::Vector2d(0, step)));
+  const double norm = gradient.norm() / (2.0 * step);
+  if (norm < 0.5)  // a ridge between two walls, or a wall's inside: no clear nearest surface
+    return m;
+  m.normal = gradient.normalized();
+  if (w.normal.squaredNorm() > 0.0) {
+    const Eigen::Vector2d normal_in_plan = rotation_2d(warp.similarity.theta) * w.normal;
+    if (std::abs(normal_in_plan.dot(m.normal)) < min_cosine)
+      return m;
+  }
+  m.found = true;
+  return m;
+}
+
+// On walls and in free space as the registration scores them, for the warped gridmap.
+void score(MapAlignment& a, const std::vector<WallPoint>& grid_points,
+           const std::vector<Eigen::Vector2d>& plan_points, const WallSurfaceField& field,
+           const OccupancyGrid& gridmap, const DistanceField& grid_distance, const PlanWarp& warp,
+           const MapRegistrationOptions& registration) {
+  const double scale = warp.similarity.scale;
+  double on = 0.0;
+  for (const WallPoint& w : grid_points) {
+    const double d = field.distance(warp.apply(w.point)) / scale;
+    on += std::exp(-0.5 * d * d / (registration.sigma * registration.sigma));
+  }
+  a.on_walls = grid_points.empty() ? 0.0 : on / double(grid_points.size());
+  std::size_t observed = 0, violations = 0;
+  for (const Eigen::Vector2d& p : plan_points) {
+    int ix = 0, iy = 0;
+    if (!gridmap.geometry().cell_of(warp.inverse(p), ix, iy) ||
+        gridmap.state(ix, iy) == CellState::unknown)
+      continue;
+    ++observed;
+    if (gridmap.state(ix, iy) == CellState::free &&
+        grid_distance.at(ix, iy) > registration.free_violation_distance)
+      ++violations;
+  }
+  a.in_free_space = observed ? double(violations) / double(observed) : 0.0;
+  a.fitness = a.on_walls - a.in_free_space;
+}
+
+}  // namespace
+
+void validate(const MapAlignmentOptions& o, const std::string& prefix) {
+  const auto positive = [&](double value, const char* field) {
+    require_option(value > 0.0 && std::isfinite(value), prefix + field, value, "> 0");
+  };
+  positive(o.first_spacing, "first_spacing");
+  positive(o.last_spacing, "last_spacing");
+  require_option(o.last_spacing <= o.first_spacing, prefix + "last_spacing", o.last_spacing,
+                 "<= first_spacing");
+  positive(o.first_radius, "first_radius");
+  positive(o.last_radius, "last_radius");
+  require_option(o.rounds >= 1 && o.rounds <= 100, prefix + "rounds", o.rounds, "in 1..100");
+  require_option(o.stiffness >= 0.0 && std::isfinite(o.stiffness), prefix + "stiffness",
+                 o.stiffness, ">= 0");
+  positive(o.point_spacing, "point_spacing");
+  require_option(o.max_normal_angle > 0.0 && o.max_normal_angle <= 90.0,
+                 prefix + "max_normal_angle", o.max_normal_angle, "in (0, 90] degrees");
+  positive(o.pair_radius, "pair_radius");
+  require_option(std::isfinite(o.min_fitness), prefix + "min_fitness", o.min_fitness, "a number");
+  require_option(std::isfinite(o.correlation_below), prefix + "correlation_below",
+                 o.correlation_below, "a number");
+}
+
+MapAlignment align_maps(const OccupancyGrid& gridmap, const OccupancyGrid& plan,
+                        PlanWalls plan_walls, const MapRegistrationOptions& registration,
+                        const MapAlignmentOptions& o) {
+  validate(o);
+  const auto clock = std::chrono::steady_clock::now();
+  MapAlignment a;
+  MapRegistrationOptions search = registration;
+  search.correlation_below = o.correlation_below;
+  a.registration = register_maps(gridmap, plan, plan_walls, search);
+  if (!a.registration.found) {
+    a.diagnosis = "a map has no walls: no registration was scored";
+    return a;
+  }
+  const MapSimilarity& similarity = a.registration.best.transform;
+  const double scale = similarity.scale;
+  const WallSurfaceField field(plan, 4.0 * o.first_radius * scale,
+                               plan_walls == PlanWalls::raster_strokes
+                                   ? WallSurfaceField::Line::surface
+                                   : WallSurfaceField::Line::centre);
+  const std::vector<WallPoint> points = gridmap_wall_points(gridmap, o.point_spacing);
+  a.points = points.size();
+  const std::vector<Eigen::Vector2d> plan_points = thinned_walls(plan, o.point_spacing * scale);
+  const DistanceField grid_distance =
+      occupied_distance_field(gridmap, 2.0 * registration.free_violation_distance);
+
+  Eigen::AlignedBox2d box;
+  for (const WallPoint& w : points)
+    box.extend(similarity.apply(w.point));
+  const double step = plan.geometry().resolution;
+  const double min_cosine = std::cos(o.max_normal_angle * std::numbers::pi / 180.0);
+  PlanWarp warp{similarity, DisplacementLattice(box, o.first_spacing * scale)};
+  const int stages = 1 + static_cast<int>(std::round(std::log2(o.first_spacing / o.last_spacing)));
+  for (int stage = 0; stage < stages; ++stage) {
+    const double t = stages > 1 ? double(stage) / (stages - 1) : 1.0;
+    const double spacing = o.first_spacing * std::pow(o.last_spacing / o.first_spacing, t);
+    const double radius = o.first_radius * std::pow(o.last_radius / o.first_radius, t) * scale;
+    DisplacementLattice lattice(box, spacing * scale);
+    for (int round = 0; round < o.rounds; ++round) {
+      std::vector<LatticeConstraint> constraints;
+      for (const WallPoint& w : points) {
+        const Match m = match_to_plan(field, warp, w, radius, step, min_cosine);
+        if (!m.found)
+          continue;
+        const Eigen::Vector2d p0 = warp.start(w.point);
+        // Move across the wall by its distance: n . D(p0) = n . (p - p0) - d (Huber-weighted).
+        const double huber = std::min(1.0, radius / 3.0 / std::max(m.distance, 1e-9));
+        constraints.push_back({p0, m.normal, m.normal.dot(m.at - p0) - m.distance, huber});
+      }
+      if (!lattice.fit(constraints, o.stiffness))
+        break;
+      warp.lattice = lattice;
+    }
+    ++a.stages;
+  }
+
+  // The final matches are the pairs: the plan wall surface point, the gridmap wall point.
+  std::vector<Eigen::Vector2d> plan_side, grid_side;
+  std::vector<double> distances;
+  for (const WallPoint& w : points) {
+    const Match m = match_to_plan(field, warp, w, o.pair_radius * scale, step, min_cosine);
+    if (!m.found)
+      continue;
+    plan_side.push_back(m.at - m.distance * m.normal);
+    grid_side.push_back(w.point);
+    distances.push_back(m.distance / scale);
+  }
+  a.pairs.points_in_plan.resize(2, static_cast<Eigen::Index>(plan_side.size()));
+  a.pairs.points_in_grid.resize(2, static_cast<Eigen::Index>(plan_side.size()));
+  for (std::size_t i = 0; i < plan_side.size(); ++i) {
+    a.pairs.points_in_plan.col(static_cast<Eigen::Index>(i)) = plan_side[i];
+    a.pairs.points_in_grid.col(static_cast<Eigen::Index>(i)) = grid_side[i];
+  }
+  a.median_distance_m = distances.empty() ? 0.0 : upper_median(distances);
+  score(a, points, plan_points, field, gridmap, grid_distance, warp, registration);
+  a.accepted = a.fitness >= o.min_fitness && a.pairs.size() >= 3;
+  if (!a.accepted) {
+    a.diagnosis = a.pairs.size() < 3 ? "fewer than 3 gridmap wall points lie on the plan's walls"
+                                     : "the maps do not fit each other well enough";
+  }
+  a.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock).count();
+  return a;
+}
+
+}  // namespace floorgrid
