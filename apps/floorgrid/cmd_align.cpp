@@ -61,14 +61,12 @@ void run_align(const std::string& dataset, const std::string& out, const JobOpti
   io::AlignmentTimings timings;
   timings.load =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - load_start).count();
-  // Without a log the pairs come from the maps alone.
-  static const RobotLog no_log;
-  const bool from_run = options.align.pairs_from != PairSource::maps;
+  // Without a log (or without using it) the pairs come from the maps alone.
   const AlignmentInputs inputs{d.plan_grid,
                                d.plan ? &*d.plan : nullptr,
                                d.plan_wall_samples,
                                d.gridmap,
-                               d.log && from_run ? *d.log : no_log,
+                               dataset_log_or_none(d, options.align.pairs_from != PairSource::maps),
                                start_poses(d),
                                d.manifest.floorplan_scale,
                                warp_truth(d),

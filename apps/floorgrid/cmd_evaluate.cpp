@@ -40,12 +40,11 @@ void run_evaluate(const std::string& dataset, const std::string& model_file, con
   report_loading(d);
   const double load_seconds = seconds_since(load_start);
   // evaluate needs no run: the maps and the truth are all it judges on.
-  static const RobotLog no_log;
   const AlignmentInputs inputs{d.plan_grid,
                                d.plan ? &*d.plan : nullptr,
                                d.plan_wall_samples,
                                d.gridmap,
-                               d.log ? *d.log : no_log,
+                               dataset_log_or_none(d),
                                std::nullopt,
                                d.manifest.floorplan_scale,
                                warp_truth(d),

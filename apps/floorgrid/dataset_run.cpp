@@ -26,6 +26,11 @@ GroundTruth warp_truth(const io::LoadedDataset& dataset) {
   return [&warp = *dataset.truth_warp](const Eigen::Vector2d& p) { return warp.plan_to_grid(p); };
 }
 
+const RobotLog& dataset_log_or_none(const io::LoadedDataset& dataset, bool use) {
+  static const RobotLog none;
+  return dataset.log && use ? *dataset.log : none;
+}
+
 const RobotLog& dataset_log(const io::LoadedDataset& dataset) {
   if (!dataset.log) {
     throw InputError("the dataset names no log: pairs need a robot run",

@@ -19,6 +19,10 @@ std::optional<StartPoses> start_poses(const io::LoadedDataset& dataset);
 /// The dataset's log; InputError naming the manifest when it has none.
 const RobotLog& dataset_log(const io::LoadedDataset& dataset);
 
+/// The dataset's log, or an empty one when it has none (or `use` is false): a job that can do
+/// without a run (evaluate, align from the maps alone).
+const RobotLog& dataset_log_or_none(const io::LoadedDataset& dataset, bool use = true);
+
 /// The dataset's exact warp as a GroundTruth (plan to grid), or an empty one without it.
 GroundTruth warp_truth(const io::LoadedDataset& dataset);
 

@@ -149,9 +149,9 @@ json metrics_json(const Alignment& a, const std::string& dataset, const Alignmen
     const MapAlignment& m = *a.maps;
     const ScoredSimilarity& r = m.registration.best;
     j["maps_only"] = {{"accepted", m.accepted},
-                      {"fitness", number(m.fitness)},
-                      {"on_walls", number(m.on_walls)},
-                      {"in_free_space", number(m.in_free_space)},
+                      {"fitness", number(m.fit.score)},
+                      {"on_walls", number(m.fit.on_walls)},
+                      {"in_free_space", number(m.fit.in_free_space)},
                       {"pairs", m.pairs.size()},
                       {"points", m.points},
                       {"stages", m.stages},

@@ -137,16 +137,24 @@ PairSource parse_pair_source(const std::string& name, const std::string& field) 
 
 namespace {
 
-// The pairs of the maps' alignment as the localization's: its status, scale and story.
-void localize_on_maps(const AlignmentInputs& in, const AlignmentOptions& options, Alignment& a) {
-  a.maps = align_maps(in.gridmap, in.plan_grid, plan_walls_of(in.plan),
-                      options.localization.plan_location.map_registration, options.maps_only);
-  const MapAlignment& m = *a.maps;
-  DualLocalization& l = a.localization;
+// Why the maps' alignment was not accepted, with its figures.
+std::string no_alignment_message(const MapAlignment& m, const MapAlignmentOptions& options) {
+  return fmt::format(
+      "no alignment found from the maps alone: {} (fitness {:.2f}, at least {:.2f} needed: "
+      "{:.0f}% of the gridmap's walls on the plan's, {:.0f}% of the plan's walls in space the "
+      "gridmap saw free)",
+      m.diagnosis, m.fit.score, options.min_fitness, 100.0 * m.fit.on_walls,
+      100.0 * m.fit.in_free_space);
+}
+
+// The maps aligned (align_maps), with a note of what it found for the localization's story.
+MapAlignment align_on_maps(const AlignmentInputs& in, const AlignmentOptions& options,
+                           DualLocalization& l) {
+  MapAlignment m =
+      align_maps(in.gridmap, in.plan_grid, plan_walls_of(in.plan),
+                 options.localization.plan_location.map_registration, options.maps_only);
   const MapSimilarity& s = m.registration.best.transform;
   if (m.registration.found) {
-    l.plan_scale = 1.0 / s.scale;
-    l.plan_scale_estimated = true;
     l.notes.push_back(fmt::format(
         "maps only: the gridmap registered on the plan at scale {:.4f}, turned {:.1f} deg, score "
         "{:.2f} (runner-up {:.2f}), then bent onto it in {} stages: {} of {} gridmap wall points "
@@ -154,22 +162,31 @@ void localize_on_maps(const AlignmentInputs& in, const AlignmentOptions& options
         "walls on the plan's, {:.0f}% of the plan's walls in free space) in {:.1f} s",
         s.scale, s.theta * 180.0 / std::numbers::pi, m.registration.best.score,
         m.registration.runner_up.score, m.stages, m.pairs.size(), m.points,
-        options.maps_only.pair_radius, m.fitness, 100.0 * m.on_walls, 100.0 * m.in_free_space,
+        options.maps_only.pair_radius, m.fit.score, 100.0 * m.fit.on_walls, 100.0 * m.fit.in_free_space,
         m.seconds));
   }
-  if (!m.accepted) {
-    l.status.ok = false;
-    l.status.field = "floorplan";
-    l.status.message = fmt::format(
-        "no alignment found from the maps alone: {} (fitness {:.2f}, at least {:.2f} needed: "
-        "{:.0f}% of the gridmap's walls on the plan's, {:.0f}% of the plan's walls in space the "
-        "gridmap saw free). Check that the plan and the gridmap show the same floor, or give "
-        "a robot run (log:)",
-        m.diagnosis, m.fitness, options.maps_only.min_fitness, 100.0 * m.on_walls,
-        100.0 * m.in_free_space);
+  if (!m.accepted)
+    l.notes.push_back(no_alignment_message(m, options.maps_only));
+  return m;
+}
+
+// The localization from the maps alone: their alignment's pairs and scale, or why none.
+void localize_on_maps(const AlignmentInputs& in, const AlignmentOptions& options, Alignment& a) {
+  DualLocalization& l = a.localization;
+  a.maps = align_on_maps(in, options, l);
+  if (a.maps->registration.found) {
+    l.plan_scale = 1.0 / a.maps->registration.best.transform.scale;
+    l.plan_scale_estimated = true;
+  }
+  if (a.maps->accepted) {
+    l.pairs = a.maps->pairs;
     return;
   }
-  l.pairs = m.pairs;
+  l.status = {false,
+              no_alignment_message(*a.maps, options.maps_only) +
+                  ". Check that the plan and the gridmap show the same floor, or give a robot "
+                  "run (log:)",
+              "floorplan"};
 }
 
 // The maps' pairs after the run's.
@@ -190,8 +207,8 @@ void append_pairs(ReferencePairs& to, const ReferencePairs& from) {
 }
 
 // The pairs judged: the truth, the plan match, every model fitted and judged.
-Alignment judge_alignment(const AlignmentInputs& in, const AlignmentOptions& options, Alignment& a,
-                          const AlignmentProgressCallback& progress);
+void judge_alignment(const AlignmentInputs& in, const AlignmentOptions& options, Alignment& a,
+                     const AlignmentProgressCallback& progress);
 
 }  // namespace
 
@@ -205,7 +222,9 @@ Alignment align(const AlignmentInputs& in, const AlignmentOptions& options,
     if (progress)
       progress({"localize", "maps", 0, 1});
     localize_on_maps(in, options, a);
-    return judge_alignment(in, options, a, progress);
+    if (a.localization.status.ok)
+      judge_alignment(in, options, a, progress);
+    return a;
   }
   // The reference pairs, by dual Monte Carlo localization.
   a.localization = localize_dual({.plan = in.plan_grid,
@@ -240,27 +259,21 @@ Alignment align(const AlignmentInputs& in, const AlignmentOptions& options,
   if (a.pairs_from == PairSource::both) {
     if (progress)
       progress({"localize", "maps", 0, 1});
-    Alignment maps;
-    localize_on_maps(in, options, maps);
-    a.maps = std::move(maps.maps);
-    a.localization.notes.insert(a.localization.notes.end(), maps.localization.notes.begin(),
-                                maps.localization.notes.end());
-    if (maps.localization.status.ok) {
+    a.maps = align_on_maps(in, options, a.localization);
+    if (a.maps->accepted) {
       append_pairs(a.localization.pairs, a.maps->pairs);
       if (slid)
         append_pairs(a.localized_pairs, a.maps->pairs);
     }
   }
-  return judge_alignment(in, options, a, progress);
+  judge_alignment(in, options, a, progress);
+  return a;
 }
 
 namespace {
 
-Alignment judge_alignment(const AlignmentInputs& in, const AlignmentOptions& options, Alignment& a,
-                          const AlignmentProgressCallback& progress) {
-  if (!a.localization.status.ok)
-    return std::move(a);
-
+void judge_alignment(const AlignmentInputs& in, const AlignmentOptions& options, Alignment& a,
+                     const AlignmentProgressCallback& progress) {
   // The truth, where it holds, and the pairs against it.
   const DatasetTruth truth = dataset_truth(in);
   a.truth = truth.plan_to_grid;
@@ -282,7 +295,6 @@ Alignment judge_alignment(const AlignmentInputs& in, const AlignmentOptions& opt
        plan_match_accepted(a.plan_match, location.min_plan_match,
                            location.max_plan_walls_in_free_space)))
     fit_and_judge_models(in, options, a, progress);
-  return std::move(a);
 }
 
 }  // namespace

@@ -3,14 +3,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <map>
 #include <numbers>
+#include <set>
 
 #include "floorgrid/core/statistics.hpp"
 #include "floorgrid/core/validation.hpp"
 #include "floorgrid/geometry/displacement_lattice.hpp"
 #include "floorgrid/geometry/pose2.hpp"
-#include "floorgrid/maps/distance_field.hpp"
 #include "floorgrid/maps/wall_surface_field.hpp"
 #include "floorgrid/pipeline/wall_slide.hpp"
 
@@ -24,43 +23,21 @@ struct WallPoint {
   Eigen::Vector2d normal;
 };
 
-// The centres of the occupied cells, one per `spacing`-metre bin (the first met), with their
-// walls' normals.
-std::vector<WallPoint> gridmap_wall_points(const OccupancyGrid& grid, double spacing) {
-  std::map<std::pair<long, long>, bool> taken;
+// The gridmap's wall cells (`cells`, their centres), one per `spacing`-metre square (the
+// first met), with their walls' normals.
+std::vector<WallPoint> spaced_wall_points(const OccupancyGrid& grid,
+                                          const std::vector<Eigen::Vector2d>& cells,
+                                          double spacing) {
+  std::set<std::pair<long, long>> taken;
   std::vector<WallPoint> points;
-  for (int iy = 0; iy < grid.height(); ++iy) {
-    for (int ix = 0; ix < grid.width(); ++ix) {
-      if (grid.state(ix, iy) != CellState::occupied)
-        continue;
-      const Eigen::Vector2d c = grid.geometry().cell_center(ix, iy);
-      const std::pair<long, long> bin{std::lround(std::floor(c.x() / spacing)),
-                                      std::lround(std::floor(c.y() / spacing))};
-      if (!taken.emplace(bin, true).second)
-        continue;
-      const Eigen::Vector2d along = wall_direction(grid, c, 0.25, 0.25);
-      points.push_back({c, Eigen::Vector2d(-along.y(), along.x())});
-    }
-  }
-  return points;
-}
-
-// The occupied cell centres of a grid, one per `spacing`-metre bin.
-std::vector<Eigen::Vector2d> thinned_walls(const OccupancyGrid& grid, double spacing) {
-  std::map<std::pair<long, long>, bool> taken;
-  std::vector<Eigen::Vector2d> points;
-  for (int iy = 0; iy < grid.height(); ++iy) {
-    for (int ix = 0; ix < grid.width(); ++ix) {
-      if (grid.state(ix, iy) != CellState::occupied)
-        continue;
-      const Eigen::Vector2d c = grid.geometry().cell_center(ix, iy);
-      if (taken
-              .emplace(std::pair<long, long>{std::lround(std::floor(c.x() / spacing)),
-                                             std::lround(std::floor(c.y() / spacing))},
-                       true)
-              .second)
-        points.push_back(c);
-    }
+  for (const Eigen::Vector2d& c : cells) {
+    if (!taken
+             .emplace(std::lround(std::floor(c.x() / spacing)),
+                      std::lround(std::floor(c.y() / spacing)))
+             .second)
+      continue;
+    const Eigen::Vector2d along = wall_direction(grid, c, 0.25, 0.25);
+    points.push_back({c, Eigen::Vector2d(-along.y(), along.x())});
   }
   return points;
 }
@@ -114,33 +91,6 @@ Match match_to_plan(const WallSurfaceField& field, const PlanWarp& warp, const W
   return m;
 }
 
-// On walls and in free space as the registration scores them, for the warped gridmap.
-void score(MapAlignment& a, const std::vector<WallPoint>& grid_points,
-           const std::vector<Eigen::Vector2d>& plan_points, const WallSurfaceField& field,
-           const OccupancyGrid& gridmap, const DistanceField& grid_distance, const PlanWarp& warp,
-           const MapRegistrationOptions& registration) {
-  const double scale = warp.similarity.scale;
-  double on = 0.0;
-  for (const WallPoint& w : grid_points) {
-    const double d = field.distance(warp.apply(w.point)) / scale;
-    on += std::exp(-0.5 * d * d / (registration.sigma * registration.sigma));
-  }
-  a.on_walls = grid_points.empty() ? 0.0 : on / double(grid_points.size());
-  std::size_t observed = 0, violations = 0;
-  for (const Eigen::Vector2d& p : plan_points) {
-    int ix = 0, iy = 0;
-    if (!gridmap.geometry().cell_of(warp.inverse(p), ix, iy) ||
-        gridmap.state(ix, iy) == CellState::unknown)
-      continue;
-    ++observed;
-    if (gridmap.state(ix, iy) == CellState::free &&
-        grid_distance.at(ix, iy) > registration.free_violation_distance)
-      ++violations;
-  }
-  a.in_free_space = observed ? double(violations) / double(observed) : 0.0;
-  a.fitness = a.on_walls - a.in_free_space;
-}
-
 }  // namespace
 
 void validate(const MapAlignmentOptions& o, const std::string& prefix) {
@@ -173,22 +123,21 @@ MapAlignment align_maps(const OccupancyGrid& gridmap, const OccupancyGrid& plan,
   MapAlignment a;
   MapRegistrationOptions search = registration;
   search.correlation_below = o.correlation_below;
-  a.registration = register_maps(gridmap, plan, plan_walls, search);
+  // One scorer for the registration and the bent map: the fitness is the registration's
+  // score, on the same wall points (its final ones), of the bent map.
+  MapFitScorer scorer(gridmap, plan, plan_walls, registration.max_points,
+                      registration.free_violation_distance);
+  a.registration = register_maps(scorer, search);
   if (!a.registration.found) {
     a.diagnosis = "a map has no walls: no registration was scored";
     return a;
   }
   const MapSimilarity& similarity = a.registration.best.transform;
   const double scale = similarity.scale;
-  const WallSurfaceField field(plan, 4.0 * o.first_radius * scale,
-                               plan_walls == PlanWalls::raster_strokes
-                                   ? WallSurfaceField::Line::surface
-                                   : WallSurfaceField::Line::centre);
-  const std::vector<WallPoint> points = gridmap_wall_points(gridmap, o.point_spacing);
+  const WallSurfaceField& field = scorer.plan_field();
+  const std::vector<WallPoint> points =
+      spaced_wall_points(gridmap, scorer.grid_cells(), o.point_spacing);
   a.points = points.size();
-  const std::vector<Eigen::Vector2d> plan_points = thinned_walls(plan, o.point_spacing * scale);
-  const DistanceField grid_distance =
-      occupied_distance_field(gridmap, 2.0 * registration.free_violation_distance);
 
   Eigen::AlignedBox2d box;
   for (const WallPoint& w : points)
@@ -238,8 +187,10 @@ MapAlignment align_maps(const OccupancyGrid& gridmap, const OccupancyGrid& plan,
     a.pairs.points_in_grid.col(static_cast<Eigen::Index>(i)) = grid_side[i];
   }
   a.median_distance_m = distances.empty() ? 0.0 : upper_median(distances);
-  score(a, points, plan_points, field, gridmap, grid_distance, warp, registration);
-  a.accepted = a.fitness >= o.min_fitness && a.pairs.size() >= 3;
+  a.fit = scorer.score([&](const Eigen::Vector2d& g) { return warp.apply(g); },
+                                  [&](const Eigen::Vector2d& p) { return warp.inverse(p); }, scale,
+                                  registration.sigma);
+  a.accepted = a.fit.score >= o.min_fitness && a.pairs.size() >= 3;
   if (!a.accepted) {
     a.diagnosis = a.pairs.size() < 3 ? "fewer than 3 gridmap wall points lie on the plan's walls"
                                      : "the maps do not fit each other well enough";

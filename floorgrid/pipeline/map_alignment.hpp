@@ -24,10 +24,11 @@ struct MapAlignmentOptions {
   double max_normal_angle = 30;  ///< degrees between matched walls' directions, at most
   /// World metres: the final correspondences this near their plan wall become the pairs.
   double pair_radius = 0.15;
-  /// The alignment is accepted when its fitness (on_walls - in_free_space after the
-  /// refinement) is at least this. On the Halmstad sensor maps the right alignments measured
-  /// 0.26-0.64; sensor maps on another building's layout 0.10-0.16, and 0.39 for a small map
-  /// (HIH_01) inside a large building (E5), which this does not catch.
+  /// The alignment is accepted when its fitness (MapFit::score of the bent map) is at least
+  /// this. On the 32 Halmstad sensor maps the right alignments measured 0.24-0.69; sensor maps
+  /// on another building's layout (and fr079's map on E5's, E5's on fr079's drawing) -0.13 to
+  /// 0.17, and 0.35 for a small map (HIH_01) inside a large building (E5), which this does not
+  /// catch.
   double min_fitness = 0.2;
   /// The registration's correlation_below here (> 1: its 2-D correlation search always runs:
   /// the wall profiles' 1-D search registered 12 of the 27 Halmstad sensor maps, with it all 27).
@@ -43,11 +44,10 @@ struct MapAlignment {
   /// Plan wall surface points and the gridmap wall points matched to them (metres), one per
   /// gridmap wall point within pair_radius of the refined plan walls.
   ReferencePairs pairs;
-  double on_walls = 0.0;  ///< mean closeness of the gridmap's walls to the refined plan's, [0, 1]
-  /// Share of the plan's walls (over the gridmap's observed area) in space it saw free.
-  double in_free_space = 0.0;
-  double fitness = 0.0;            ///< on_walls - in_free_space
-  bool accepted = false;           ///< fitness >= min_fitness
+  /// The bent gridmap's fit (MapFitScorer, on the registration's final wall points): its score
+  /// is the fitness.
+  MapFit fit;
+  bool accepted = false;           ///< fit.score >= min_fitness
   std::string diagnosis;           ///< why not accepted (empty when accepted)
   std::size_t points = 0;          ///< gridmap wall points used
   int stages = 0;                  ///< lattice stages run

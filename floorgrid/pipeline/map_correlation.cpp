@@ -1,8 +1,8 @@
 #include "floorgrid/pipeline/map_correlation.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -13,32 +13,20 @@ namespace floorgrid {
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-// Metres of world from a gridmap wall beyond which free space counts against a plan wall (as
-// the 2-D scorer's free_violation_distance).
-constexpr double kFreeViolation = 0.4;
 // Local maxima of one turn and scale's correlation kept before the free-space check.
 constexpr int kPeaksPerImage = 4;
 
-struct Bounds {
-  double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
-};
-
-Bounds bounds_of(const std::vector<Eigen::Vector2d>& points) {
-  Bounds b{points.front().x(), points.front().y(), points.front().x(), points.front().y()};
-  for (const Eigen::Vector2d& p : points) {
-    b.x0 = std::min(b.x0, p.x());
-    b.y0 = std::min(b.y0, p.y());
-    b.x1 = std::max(b.x1, p.x());
-    b.y1 = std::max(b.y1, p.y());
-  }
-  return b;
+Eigen::AlignedBox2d bounds_of(const std::vector<Eigen::Vector2d>& points) {
+  Eigen::AlignedBox2d box;
+  for (const Eigen::Vector2d& p : points)
+    box.extend(p);
+  return box;
 }
 
 // The gridmap turned: its wall cells as an image over their bounds, and its free cells (far
 // from any wall) and observed cells as cell lists of that image.
 struct TurnedGridmap {
-  Bounds bounds;
+  Eigen::AlignedBox2d bounds;
   cv::Mat walls;  // CV_32F, 1 on a wall cell
   double wall_cells = 0.0;
   std::vector<cv::Point> free, observed;
@@ -53,12 +41,12 @@ TurnedGridmap turn_gridmap(const CorrelationInputs& in, const DistanceField& gri
   for (const Eigen::Vector2d& g : in.grid_walls)
     walls.push_back(R * g);
   t.bounds = bounds_of(walls);
-  const int width = static_cast<int>(std::ceil((t.bounds.x1 - t.bounds.x0) / cell)) + 1;
-  const int height = static_cast<int>(std::ceil((t.bounds.y1 - t.bounds.y0) / cell)) + 1;
+  const int width = static_cast<int>(std::ceil(t.bounds.sizes().x() / cell)) + 1;
+  const int height = static_cast<int>(std::ceil(t.bounds.sizes().y() / cell)) + 1;
   t.walls = cv::Mat(height, width, CV_32FC1, cv::Scalar(0));
   const auto cell_of = [&](const Eigen::Vector2d& r) {
-    return cv::Point(static_cast<int>((r.x() - t.bounds.x0) / cell),
-                     static_cast<int>((r.y() - t.bounds.y0) / cell));
+    return cv::Point(static_cast<int>((r.x() - t.bounds.min().x()) / cell),
+                     static_cast<int>((r.y() - t.bounds.min().y()) / cell));
   };
   for (const Eigen::Vector2d& r : walls) {
     const cv::Point c = cell_of(r);
@@ -77,7 +65,8 @@ TurnedGridmap turn_gridmap(const CorrelationInputs& in, const DistanceField& gri
       const cv::Point c = cell_of(R * grid.geometry().cell_center(ix, iy));
       if (c.x < 0 || c.y < 0 || c.x >= width || c.y >= height)
         continue;
-      const bool is_free = state == CellState::free && grid_distance.at(ix, iy) > kFreeViolation;
+      const bool is_free =
+          state == CellState::free && grid_distance.at(ix, iy) > in.free_violation_distance;
       std::uint8_t& s = seen.at<std::uint8_t>(c.y, c.x);
       if (!(s & 1)) {
         t.observed.push_back(c);
@@ -101,15 +90,16 @@ struct ScaledPlan {
   cv::Mat closeness;      // CV_32F
 };
 
-ScaledPlan scale_plan(const std::vector<Eigen::Vector2d>& plan_turned, const Bounds& plan_bounds,
-                      double scale, int pad_x, int pad_y, double cell, double closeness) {
+ScaledPlan scale_plan(const std::vector<Eigen::Vector2d>& plan_turned,
+                      const Eigen::AlignedBox2d& plan_bounds, double scale, int pad_x, int pad_y,
+                      double cell, double closeness) {
   ScaledPlan p;
-  p.x0 = plan_bounds.x0 / scale - pad_x * cell;
-  p.y0 = plan_bounds.y0 / scale - pad_y * cell;
+  p.x0 = plan_bounds.min().x() / scale - pad_x * cell;
+  p.y0 = plan_bounds.min().y() / scale - pad_y * cell;
   const int width =
-      static_cast<int>(std::ceil((plan_bounds.x1 - plan_bounds.x0) / scale / cell)) + 2 * pad_x + 1;
+      static_cast<int>(std::ceil(plan_bounds.sizes().x() / scale / cell)) + 2 * pad_x + 1;
   const int height =
-      static_cast<int>(std::ceil((plan_bounds.y1 - plan_bounds.y0) / scale / cell)) + 2 * pad_y + 1;
+      static_cast<int>(std::ceil(plan_bounds.sizes().y() / scale / cell)) + 2 * pad_y + 1;
   p.walls = cv::Mat(height, width, CV_8UC1, cv::Scalar(0));
   cv::Mat not_wall(height, width, CV_8UC1, cv::Scalar(1));
   for (const Eigen::Vector2d& q : plan_turned) {
@@ -145,18 +135,6 @@ double free_share(const TurnedGridmap& g, const ScaledPlan& p, int u, int v) {
   return observed ? double(walls_at(g.free)) / double(observed) : 0.0;
 }
 
-bool distinct(const CorrelationCandidate& a, const CorrelationCandidate& b,
-              const Eigen::Vector2d& centre) {
-  if (std::abs(std::log(a.scale / b.scale)) > 0.05)
-    return true;
-  if (std::abs(std::remainder(a.theta - b.theta, 2 * kPi)) > 10.0 * kPi / 180.0)
-    return true;
-  const auto apply = [&](const CorrelationCandidate& c) -> Eigen::Vector2d {
-    return c.scale * (rotation_2d(c.theta) * centre) + c.translation;
-  };
-  return (apply(a) - apply(b)).norm() / a.scale > 2.0;
-}
-
 }  // namespace
 
 std::vector<CorrelationCandidate> correlation_candidates(const CorrelationInputs& in,
@@ -165,12 +143,13 @@ std::vector<CorrelationCandidate> correlation_candidates(const CorrelationInputs
   if (in.grid_walls.size() < 10 || in.plan_walls.size() < 10 || in.turns.empty())
     return all;
   const double cell = o.cell;
-  const DistanceField grid_distance = occupied_distance_field(in.gridmap, 2.0 * kFreeViolation);
+  const DistanceField grid_distance =
+      occupied_distance_field(in.gridmap, 2.0 * in.free_violation_distance);
   std::vector<Eigen::Vector2d> plan_turned;
   plan_turned.reserve(in.plan_walls.size());
   for (const Eigen::Vector2d& p : in.plan_walls)
     plan_turned.push_back(rotation_2d(-in.plan_angle) * p);
-  const Bounds plan_bounds = bounds_of(plan_turned);
+  const Eigen::AlignedBox2d plan_bounds = bounds_of(plan_turned);
 
   std::vector<TurnedGridmap> turned;
   for (const double turn : in.turns)
@@ -178,13 +157,13 @@ std::vector<CorrelationCandidate> correlation_candidates(const CorrelationInputs
   const int scales =
       static_cast<int>(std::ceil(std::log(in.max_scale / in.min_scale) / o.scale_step)) + 1;
   const int suppress = std::max(1, static_cast<int>(std::ceil(2.0 / cell)));
+  int pad_x = 0, pad_y = 0;
+  for (const TurnedGridmap& g : turned) {
+    pad_x = std::max(pad_x, g.walls.cols / 2 + 1);
+    pad_y = std::max(pad_y, g.walls.rows / 2 + 1);
+  }
   for (int i = 0; i < scales; ++i) {
     const double scale = std::min(in.max_scale, in.min_scale * std::exp(i * o.scale_step));
-    int pad_x = 0, pad_y = 0;
-    for (const TurnedGridmap& g : turned) {
-      pad_x = std::max(pad_x, g.walls.cols / 2 + 1);
-      pad_y = std::max(pad_y, g.walls.rows / 2 + 1);
-    }
     const ScaledPlan plan =
         scale_plan(plan_turned, plan_bounds, scale, pad_x, pad_y, cell, o.closeness);
     for (std::size_t k = 0; k < turned.size(); ++k) {
@@ -204,12 +183,12 @@ std::vector<CorrelationCandidate> correlation_candidates(const CorrelationInputs
         cv::rectangle(on, {at.x - suppress, at.y - suppress}, {at.x + suppress, at.y + suppress},
                       cv::Scalar(-1.0), cv::FILLED);
         CorrelationCandidate c;
-        c.scale = scale;
-        c.theta = in.plan_angle + in.turns[k] - in.grid_angle;
+        c.transform.scale = scale;
+        c.transform.theta = in.plan_angle + in.turns[k] - in.grid_angle;
         // The gridmap's turned point r lies at plan-turned-scaled r + delta.
-        const Eigen::Vector2d delta(plan.x0 + at.x * cell - g.bounds.x0,
-                                    plan.y0 + at.y * cell - g.bounds.y0);
-        c.translation = scale * (rotation_2d(in.plan_angle) * delta);
+        const Eigen::Vector2d delta =
+            Eigen::Vector2d(plan.x0 + at.x * cell, plan.y0 + at.y * cell) - g.bounds.min();
+        c.transform.translation = scale * (rotation_2d(in.plan_angle) * delta);
         c.score = best - free_share(g, plan, at.x, at.y);
         all.push_back(c);
       }
@@ -225,8 +204,9 @@ std::vector<CorrelationCandidate> correlation_candidates(const CorrelationInputs
   centre /= double(in.grid_walls.size());
   std::vector<CorrelationCandidate> kept;
   for (const CorrelationCandidate& c : all) {
-    if (std::all_of(kept.begin(), kept.end(),
-                    [&](const CorrelationCandidate& k) { return distinct(c, k, centre); }))
+    if (std::all_of(kept.begin(), kept.end(), [&](const CorrelationCandidate& k) {
+          return distinct(c.transform, k.transform, centre);
+        }))
       kept.push_back(c);
     if (static_cast<int>(kept.size()) >= o.peaks)
       break;

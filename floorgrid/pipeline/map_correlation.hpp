@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "floorgrid/maps/occupancy_grid.hpp"
+#include "floorgrid/pipeline/map_fit_score.hpp"
 
 namespace floorgrid {
 
@@ -15,19 +16,16 @@ struct MapCorrelationOptions {
   int peaks = 12;            ///< candidates kept over all turns and scales
 };
 
-/// A pose and scale of the gridmap on the plan found by correlation (grid -> plan:
-/// p = scale R(theta) g + t) with its coarse score.
+/// A pose and scale of the gridmap on the plan found by correlation, with its coarse score.
 struct CorrelationCandidate {
-  double scale = 1.0;                                     ///< plan metres per world metre
-  double theta = 0.0;                                     ///< radians
-  Eigen::Vector2d translation = Eigen::Vector2d::Zero();  ///< plan metres
-  double score = 0.0;                                     ///< coarse on_walls - in_free_space
+  MapSimilarity transform;  ///< grid -> plan
+  double score = 0.0;       ///< coarse on_walls - in_free_space
 };
 
 /// The inputs of the correlation search: each map's wall cell centres (its own frame), the
 /// gridmap (its free and observed cells), the turns to try (radians, applied to the gridmap's
-/// walls after turning them by -grid_angle; the plan's walls are turned by -plan_angle), and
-/// the scale range.
+/// walls after turning them by -grid_angle; the plan's walls are turned by -plan_angle), the
+/// scale range, and what counts as free space.
 struct CorrelationInputs {
   const OccupancyGrid& gridmap;
   const std::vector<Eigen::Vector2d>& grid_walls;
@@ -37,6 +35,9 @@ struct CorrelationInputs {
   std::vector<double> turns;
   double min_scale = 0.25;
   double max_scale = 4.0;
+  /// World metres from the gridmap's walls beyond which its free space counts against a plan
+  /// wall (MapRegistrationOptions::free_violation_distance).
+  double free_violation_distance = 0.4;
 };
 
 /// Candidates of the gridmap's pose and scale on the plan by a 2-D correlation, for every turn

@@ -18,29 +18,8 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 constexpr double kDegree = kPi / 180.0;
 
-// The centres of a grid's occupied cells.
-std::vector<Eigen::Vector2d> wall_points(const OccupancyGrid& grid) {
-  std::vector<Eigen::Vector2d> all;
-  for (int iy = 0; iy < grid.height(); ++iy) {
-    for (int ix = 0; ix < grid.width(); ++ix) {
-      if (grid.state(ix, iy) == CellState::occupied)
-        all.push_back(grid.geometry().cell_center(ix, iy));
-    }
-  }
-  return all;
-}
-
-// `points` evenly thinned to at most `max_points` (0: all).
-std::vector<Eigen::Vector2d> thinned(const std::vector<Eigen::Vector2d>& points,
-                                     std::size_t max_points) {
-  if (max_points == 0 || points.size() <= max_points)
-    return points;
-  std::vector<Eigen::Vector2d> kept;
-  kept.reserve(max_points);
-  const double stride = double(points.size()) / double(max_points);
-  for (std::size_t i = 0; i < max_points; ++i)
-    kept.push_back(points[static_cast<std::size_t>(double(i) * stride)]);
-  return kept;
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 // The angle in [0, pi/2) at which the points' projections on the two turned axes are sharpest
@@ -85,7 +64,7 @@ double projection_angle(const std::vector<Eigen::Vector2d>& points, double bin) 
 // cell wide a few degrees off the grid's axes is a staircase whose edges all run along the axes,
 // so its gradients point along the axes whatever the line's angle (a DXF plan drawn 8 degrees
 // off was taken as axis-aligned, and its long corridor's registration failed). `walls` are the
-// grid's wall points (wall_points).
+// grid's wall points.
 struct Direction {
   double angle = 0.0;
   double strength = 0.0;
@@ -179,111 +158,47 @@ struct Candidate {
   double profile_score = 0.0;
 };
 
-// The 2-D score of a transform (see register_maps), on each map's wall points (wall_points)
-// thinned to options.max_points.
-class Scorer {
- public:
-  Scorer(const OccupancyGrid& gridmap, const OccupancyGrid& plan, PlanWalls plan_walls,
-         const std::vector<Eigen::Vector2d>& grid_cells,
-         const std::vector<Eigen::Vector2d>& plan_cells, const MapRegistrationOptions& o)
-      : gridmap_(gridmap),
-        plan_field_(plan, 5.0,
-                    plan_walls == PlanWalls::raster_strokes ? WallSurfaceField::Line::surface
-                                                            : WallSurfaceField::Line::centre),
-        grid_field_(occupied_distance_field(gridmap, 2.0)),
-        grid_points_(thinned(grid_cells, o.max_points)),
-        plan_points_(thinned(plan_cells, o.max_points)),
-        options_(o) {
-    for (const Eigen::Vector2d& g : grid_points_)
-      centre_ += g;
-    if (!grid_points_.empty())
-      centre_ /= double(grid_points_.size());
-  }
-
-  bool usable() const { return grid_points_.size() >= 10 && plan_points_.size() >= 10; }
-  /// Scores on these wall points from now on (the centre stays).
-  void use_points(std::vector<Eigen::Vector2d> grid, std::vector<Eigen::Vector2d> plan) {
-    grid_points_ = std::move(grid);
-    plan_points_ = std::move(plan);
-  }
-  const std::vector<Eigen::Vector2d>& grid_points() const { return grid_points_; }
-
-  ScoredSimilarity score(const MapSimilarity& t, double sigma) const {
-    ScoredSimilarity s{t, 0.0, 0.0, 0.0};
-    double on = 0.0;
-    for (const Eigen::Vector2d& g : grid_points_) {
-      const double d = plan_field_.distance(t.apply(g)) / t.scale;
-      on += std::exp(-0.5 * d * d / (sigma * sigma));
-    }
-    s.on_walls = on / double(grid_points_.size());
-    std::size_t observed = 0, violations = 0;
-    for (const Eigen::Vector2d& p : plan_points_) {
-      const Eigen::Vector2d g = t.inverse(p);
-      int ix = 0, iy = 0;
-      if (!gridmap_.geometry().cell_of(g, ix, iy) || gridmap_.state(ix, iy) == CellState::unknown)
-        continue;
-      ++observed;
-      if (gridmap_.state(ix, iy) == CellState::free &&
-          grid_field_.at(ix, iy) > options_.free_violation_distance) {
-        ++violations;
-      }
-    }
-    s.in_free_space = observed ? double(violations) / double(observed) : 0.0;
-    s.score = s.on_walls - s.in_free_space;
-    return s;
-  }
-
-  // Pattern search over log scale, angle and translation, steps halving from coarse to fine.
-  ScoredSimilarity refine(const MapSimilarity& start, double sigma) const {
-    ScoredSimilarity best = score(start, sigma);
-    double step_log = 0.03, step_angle = 2.0 * kDegree, step_t = 4.0 * sigma * start.scale;
-    for (int round = 0; round < 12; ++round) {
-      bool improved = true;
-      for (int moves = 0; improved && moves < 40; ++moves) {
-        improved = false;
-        for (int axis = 0; axis < 4; ++axis) {
-          for (const double sign : {-1.0, 1.0}) {
-            MapSimilarity t = best.transform;
-            if (axis == 0) {
-              t.scale *= std::exp(sign * step_log);
-              if (t.scale < options_.min_scale || t.scale > options_.max_scale)
-                continue;
-            }
-            if (axis == 1)
-              t.theta += sign * step_angle;
-            if (axis == 2)
-              t.translation.x() += sign * step_t * t.scale / start.scale;
-            if (axis == 3)
-              t.translation.y() += sign * step_t * t.scale / start.scale;
-            // A turn or a scale about the gridmap walls' centre, not the frame's origin.
-            if (axis <= 1)
-              t.translation += best.transform.apply(centre_) - t.apply(centre_);
-            const ScoredSimilarity s = score(t, sigma);
-            if (s.score > best.score + 1e-9) {
-              best = s;
-              improved = true;
-            }
+// Pattern search over log scale, angle and translation, steps halving from coarse to fine.
+ScoredSimilarity refine(const MapFitScorer& scorer, const MapSimilarity& start, double sigma,
+                        const MapRegistrationOptions& options) {
+  const Eigen::Vector2d& centre = scorer.centre();
+  ScoredSimilarity best = scorer.score(start, sigma);
+  double step_log = 0.03, step_angle = 2.0 * kDegree, step_t = 4.0 * sigma * start.scale;
+  for (int round = 0; round < 12; ++round) {
+    bool improved = true;
+    for (int moves = 0; improved && moves < 40; ++moves) {
+      improved = false;
+      for (int axis = 0; axis < 4; ++axis) {
+        for (const double sign : {-1.0, 1.0}) {
+          MapSimilarity t = best.transform;
+          if (axis == 0) {
+            t.scale *= std::exp(sign * step_log);
+            if (t.scale < options.min_scale || t.scale > options.max_scale)
+              continue;
+          }
+          if (axis == 1)
+            t.theta += sign * step_angle;
+          if (axis == 2)
+            t.translation.x() += sign * step_t * t.scale / start.scale;
+          if (axis == 3)
+            t.translation.y() += sign * step_t * t.scale / start.scale;
+          // A turn or a scale about the gridmap walls' centre, not the frame's origin.
+          if (axis <= 1)
+            t.translation += best.transform.apply(centre) - t.apply(centre);
+          const ScoredSimilarity s = scorer.score(t, sigma);
+          if (s.score > best.score + 1e-9) {
+            best = s;
+            improved = true;
           }
         }
       }
-      step_log *= 0.5;
-      step_angle *= 0.5;
-      step_t *= 0.5;
     }
-    return best;
+    step_log *= 0.5;
+    step_angle *= 0.5;
+    step_t *= 0.5;
   }
-
-  const Eigen::Vector2d& centre() const { return centre_; }
-
- private:
-  const OccupancyGrid& gridmap_;
-  WallSurfaceField plan_field_;
-  DistanceField grid_field_;
-  std::vector<Eigen::Vector2d> grid_points_;
-  std::vector<Eigen::Vector2d> plan_points_;
-  MapRegistrationOptions options_;
-  Eigen::Vector2d centre_ = Eigen::Vector2d::Zero();
-};
+  return best;
+}
 
 // The turns searched: both maps turned to their dominant directions and four quarter turns
 // when both have one, else 36 turns of 10 degrees.
@@ -383,22 +298,17 @@ std::vector<Candidate> profile_candidates(const std::vector<Eigen::Vector2d>& gr
 
 // Refined at closeness sigma, then sigma / 3 (which resolves the scale to a few parts in 10^4
 // on a building's walls); scored at sigma, as the options' thresholds are.
-ScoredSimilarity refine_fine(const Scorer& scorer, const MapSimilarity& start, double sigma) {
-  const ScoredSimilarity medium = scorer.refine(start, sigma);
-  return scorer.score(scorer.refine(medium.transform, sigma / 3.0).transform, sigma);
+ScoredSimilarity refine_fine(const MapFitScorer& scorer, const MapSimilarity& start, double sigma,
+                             const MapRegistrationOptions& options) {
+  const ScoredSimilarity medium = refine(scorer, start, sigma, options);
+  return scorer.score(refine(scorer, medium.transform, sigma / 3.0, options).transform, sigma);
 }
 
 // Refined coarse to fine: closeness 4 sigma first, then refine_fine.
-ScoredSimilarity refine_in_steps(const Scorer& scorer, const MapSimilarity& start, double sigma) {
-  return refine_fine(scorer, scorer.refine(start, 4.0 * sigma).transform, sigma);
-}
-
-bool distinct(const MapSimilarity& a, const MapSimilarity& b, const Eigen::Vector2d& centre) {
-  if (std::abs(std::log(a.scale / b.scale)) > 0.05)
-    return true;
-  if (std::abs(std::remainder(a.theta - b.theta, 2 * kPi)) > 10.0 * kDegree)
-    return true;
-  return (a.apply(centre) - b.apply(centre)).norm() / a.scale > 2.0;
+ScoredSimilarity refine_in_steps(const MapFitScorer& scorer, const MapSimilarity& start,
+                                 const MapRegistrationOptions& options) {
+  const double sigma = options.sigma;
+  return refine_fine(scorer, refine(scorer, start, 4.0 * sigma, options).transform, sigma, options);
 }
 
 }  // namespace
@@ -424,52 +334,44 @@ void validate(const MapRegistrationOptions& o, const std::string& prefix) {
                  ">= 1");
 }
 
-Eigen::Vector2d MapSimilarity::apply(const Eigen::Vector2d& g) const {
-  return scale * (rotation_2d(theta) * g) + translation;
-}
-
-Eigen::Vector2d MapSimilarity::inverse(const Eigen::Vector2d& p) const {
-  return rotation_2d(-theta) * (p - translation) / scale;
-}
-
-Pose2 MapSimilarity::apply(const Pose2& pose) const {
-  const Eigen::Vector2d p = apply(pose.translation());
-  return {p.x(), p.y(), normalize_angle(pose.theta + theta)};
-}
-
 MapRegistration register_maps(const OccupancyGrid& gridmap, const OccupancyGrid& plan,
                               PlanWalls plan_walls, const MapRegistrationOptions& options) {
   validate(options);
   const auto clock = std::chrono::steady_clock::now();
+  MapFitScorer scorer(gridmap, plan, plan_walls, options.max_points,
+                      options.free_violation_distance);
+  MapRegistration result = register_maps(scorer, options);
+  result.seconds = seconds_since(clock);
+  return result;
+}
+
+MapRegistration register_maps(MapFitScorer& scorer, const MapRegistrationOptions& options) {
+  validate(options);
+  const auto clock = std::chrono::steady_clock::now();
   MapRegistration result;
-  const std::vector<Eigen::Vector2d> grid_cells = wall_points(gridmap);
-  const std::vector<Eigen::Vector2d> plan_cells = wall_points(plan);
-  Scorer scorer(gridmap, plan, plan_walls, grid_cells, plan_cells, options);
   if (!scorer.usable())
     return result;
   const Eigen::Vector2d& centre = scorer.centre();
 
-  const std::vector<Eigen::Vector2d> grid_all = thinned(grid_cells, 40000);
-  const std::vector<Eigen::Vector2d> plan_all = thinned(plan_cells, 40000);
-  const Direction grid_dir = dominant_direction(gridmap, grid_all);
-  const Direction plan_dir = dominant_direction(plan, plan_all);
-  const std::vector<Candidate> candidates =
-      profile_candidates(grid_all, plan_all, grid_dir, plan_dir, options);
+  const std::vector<Eigen::Vector2d> grid_all = evenly_thinned(scorer.grid_cells(), 40000);
+  const std::vector<Eigen::Vector2d> plan_all = evenly_thinned(scorer.plan_cells(), 40000);
+  const Direction grid_dir = dominant_direction(scorer.gridmap(), grid_all);
+  const Direction plan_dir = dominant_direction(scorer.plan(), plan_all);
   std::vector<ScoredSimilarity> refined;
   double best_score = -1.0;
-  for (const Candidate& c : candidates) {
-    refined.push_back(refine_in_steps(scorer, c.transform, options.sigma));
+  for (const Candidate& c : profile_candidates(grid_all, plan_all, grid_dir, plan_dir, options)) {
+    refined.push_back(refine_in_steps(scorer, c.transform, options));
     best_score = std::max(best_score, refined.back().score);
   }
   if (best_score < options.correlation_below) {
     result.correlation = true;
     const Turns turns = search_turns(grid_dir, plan_dir);
-    CorrelationInputs inputs{gridmap,          grid_all,    plan_all,          turns.grid_angle,
-                             turns.plan_angle, turns.turns, options.min_scale, options.max_scale};
-    for (const CorrelationCandidate& c : correlation_candidates(inputs, options.correlation)) {
-      const MapSimilarity start{c.scale, c.theta, c.translation};
-      refined.push_back(refine_in_steps(scorer, start, options.sigma));
-    }
+    const CorrelationInputs inputs{
+        scorer.gridmap(),  grid_all,          plan_all,
+        turns.grid_angle,  turns.plan_angle,  turns.turns,
+        options.min_scale, options.max_scale, options.free_violation_distance};
+    for (const CorrelationCandidate& c : correlation_candidates(inputs, options.correlation))
+      refined.push_back(refine_in_steps(scorer, c.transform, options));
   }
   result.candidates = refined.size();
   std::sort(refined.begin(), refined.end(),
@@ -486,23 +388,23 @@ MapRegistration register_maps(const OccupancyGrid& gridmap, const OccupancyGrid&
   if (options.final_points > options.max_points) {
     // The thinned points' scale is off by up to 0.1% (sampling): the winner once more on
     // (almost) every wall point, the runner-up scored on the same points.
-    scorer.use_points(thinned(grid_cells, options.final_points),
-                      thinned(plan_cells, options.final_points));
-    result.best = refine_fine(scorer, result.best.transform, options.sigma);
+    scorer.use_points(options.final_points);
+    result.best = refine_fine(scorer, result.best.transform, options.sigma, options);
     if (runner_up != refined.end())
       result.runner_up = scorer.score(result.runner_up.transform, options.sigma);
   }
-  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock).count();
+  result.seconds = seconds_since(clock);
   return result;
 }
 
 ScoredSimilarity refine_map_similarity(const OccupancyGrid& gridmap, const OccupancyGrid& plan,
                                        PlanWalls plan_walls, const MapSimilarity& start,
                                        const MapRegistrationOptions& options) {
-  const Scorer scorer(gridmap, plan, plan_walls, wall_points(gridmap), wall_points(plan), options);
+  const MapFitScorer scorer(gridmap, plan, plan_walls, options.max_points,
+                            options.free_violation_distance);
   if (!scorer.usable())
-    return {start, -1.0, 0.0, 1.0};
-  return refine_in_steps(scorer, start, options.sigma);
+    return {{-1.0, 0.0, 1.0}, start};
+  return refine_in_steps(scorer, start, options);
 }
 
 }  // namespace floorgrid

@@ -4,10 +4,9 @@
 #include <string>
 #include <vector>
 
-#include "floorgrid/geometry/pose2.hpp"
 #include "floorgrid/maps/occupancy_grid.hpp"
-#include "floorgrid/maps/vector_floorplan.hpp"
 #include "floorgrid/pipeline/map_correlation.hpp"
+#include "floorgrid/pipeline/map_fit_score.hpp"
 
 namespace floorgrid {
 
@@ -43,29 +42,6 @@ struct MapRegistrationOptions {
 void validate(const MapRegistrationOptions& options,
               const std::string& prefix = "align.localization.plan_location.map_registration.");
 
-/// A similarity from the gridmap frame into the plan frame: p = scale R(theta) g + t.
-struct MapSimilarity {
-  double scale = 1.0;  ///< plan metres per world metre (1 / floorplan_scale)
-  double theta = 0.0;  ///< radians
-  Eigen::Vector2d translation = Eigen::Vector2d::Zero();  ///< plan metres
-
-  /// A gridmap point in the plan.
-  Eigen::Vector2d apply(const Eigen::Vector2d& g) const;
-  /// A plan point in the gridmap.
-  Eigen::Vector2d inverse(const Eigen::Vector2d& p) const;
-  /// A gridmap pose in the plan (heading turned by theta).
-  Pose2 apply(const Pose2& pose) const;
-};
-
-/// One registration with its score.
-struct ScoredSimilarity {
-  MapSimilarity transform;
-  double score = 0.0;     ///< on_walls - in_free_space, in [-1, 1]
-  double on_walls = 0.0;  ///< mean closeness of the gridmap's walls to the plan's walls, [0, 1]
-  double in_free_space = 0.0;  ///< share of the plan's walls (over the gridmap's observed area)
-                               ///< lying in space the gridmap saw free
-};
-
 /// What register_maps found.
 struct MapRegistration {
   bool found = false;     ///< a transform was scored (false: a map had no walls)
@@ -78,18 +54,6 @@ struct MapRegistration {
   double seconds = 0.0;        ///< wall clock
 };
 
-/// How the plan grid's walls were drawn, which says where their surfaces are.
-enum class PlanWalls {
-  raster_strokes,  ///< a raster drawing: strokes of any thickness; the wall is the stroke's edge
-  vector_lines,    ///< a vector drawing rasterized: the wall is the line along the cells' centres
-};
-
-/// How a dataset's plan grid was drawn: rasterized from `plan_geometry` (a DXF's lines) when
-/// there is one, else a raster drawing.
-inline PlanWalls plan_walls_of(const VectorFloorplan* plan_geometry) {
-  return plan_geometry ? PlanWalls::vector_lines : PlanWalls::raster_strokes;
-}
-
 /// Registers the gridmap on the plan over scale, rotation and translation, coarse to fine:
 /// both maps' walls are turned to their dominant direction; their wall profiles along both axes
 /// are correlated over the scale lattice and every shift, for the four quarter turns (and 36
@@ -100,6 +64,11 @@ inline PlanWalls plan_walls_of(const VectorFloorplan* plan_geometry) {
 /// to the plan's wall surfaces as `plan_walls` says (a stroke's free-side edge, or a line).
 MapRegistration register_maps(const OccupancyGrid& gridmap, const OccupancyGrid& plan,
                               PlanWalls plan_walls, const MapRegistrationOptions& options = {});
+
+/// register_maps with the maps' scorer given (built with options.max_points and
+/// free_violation_distance); it is left scoring on options.final_points wall points, those the
+/// best transform was scored on last.
+MapRegistration register_maps(MapFitScorer& scorer, const MapRegistrationOptions& options = {});
 
 /// `start` refined on the two maps as register_maps refines its candidates, with its score.
 ScoredSimilarity refine_map_similarity(const OccupancyGrid& gridmap, const OccupancyGrid& plan,

@@ -58,8 +58,8 @@ TEST(MapAlignment, BendsTheGridmapOntoTheWallsOfABentBuilding) {
   // The bend is 0.3-1 m: no similarity fits it; the refinement follows it to centimetres.
   EXPECT_LT(refined, 0.08);
   EXPECT_LT(refined, 0.6 * similar) << "similarity alone " << similar;
-  EXPECT_GT(a.on_walls, 0.6);
-  EXPECT_LT(a.in_free_space, 0.05);
+  EXPECT_GT(a.fit.on_walls, 0.6);
+  EXPECT_LT(a.fit.in_free_space, 0.05);
 }
 
 TEST(MapAlignment, APartOfTheBuildingFindsItsPlace) {
@@ -78,7 +78,7 @@ TEST(MapAlignment, AnotherBuildingsPlanFitsFarWorse) {
   const MapAlignment wrong = align_maps(d.gridmap, plan_grid(warehouse), PlanWalls::vector_lines);
   EXPECT_FALSE(wrong.accepted);
   EXPECT_FALSE(wrong.diagnosis.empty());
-  EXPECT_LT(wrong.fitness, 0.5 * right.fitness);
+  EXPECT_LT(wrong.fit.score, 0.5 * right.fit.score);
 }
 
 TEST(MapAlignment, BadOptionsNameTheirField) {
