@@ -10,11 +10,16 @@
 # The published comparison (Shahbandi, Magnusson, Iagnemma, RA-L 2018, on this data): 80.41%
 # success by eye, mean point-to-point error 1.78 m over 40 maps.
 #
-# Usage: bench/halmstad_maps_only.sh [build-dir] [work-dir]
+# With `negatives` as the third argument it then aligns every sensor map to the two other
+# buildings' layouts too, where every answer is wrong: each must end in "no alignment found"
+# (a non-zero exit) and the table counts those that did not (the fitness measure's misses).
+#
+# Usage: bench/halmstad_maps_only.sh [build-dir] [work-dir] [negatives]
 # Each map's output (report.html, overlays/) is in work-dir/<map>/align.
 set -uo pipefail
 build=${1:-build}
 work=${2:-$(mktemp -d)}
+negatives=${3:-}
 bin="$build/floorgrid"
 here=$(cd "$(dirname "$0")/.." && pwd)
 data="$here/../shared/data/halmstad"
@@ -105,4 +110,55 @@ for env in ("E5", "F5", "HIH", ""):
     mean = sum(errs) / len(errs) if errs else float("nan")
     print(f"{env or 'all':11s} {len(judged):6d} {len(ok):5d}/{len(judged):<3d} {mean:10.1f} px / {mean * 0.05:.2f} m")
 PY
+# Every map's overlay on one page: the plan's walls through the chosen model (red) and through
+# the hand pairs (green; none where a map has no pairs) on the sensor map.
+{
+  echo '<!DOCTYPE html><html><head><meta charset="utf-8"><title>Halmstad maps-only overlays</title>'
+  echo '<style>figure{display:inline-block;margin:4px;width:32%}img{width:100%}</style></head><body>'
+  while read -r name fit accepted _ med _ mean_m model success _; do
+    echo "<figure><a href=\"$name/align/report.html\"><img src=\"$name/align/overlays/overlay-auto.png\" alt=\"$name\"></a>"
+    echo "<figcaption>$name: fitness $fit ($accepted), median $med px, mean $mean_m m, $model, success $success</figcaption></figure>"
+  done < "$work/table.txt"
+  echo '</body></html>'
+} > "$work/overlays.html"
+echo "every map's overlay: $work/overlays.html"
+[ "$negatives" = negatives ] || { echo "outputs in $work"; exit 0; }
+
+# Every sensor map on the other buildings' layouts: a wrong building, so "no alignment found".
+echo
+printf '%-8s %-7s %6s %8s %6s %3s %s\n' map layout fit runner reg rc flagged
+for env in E5 F5 HIH; do
+  for sensor in "$data/$env"/pseudo_occupancy/*.png; do
+    name=$(basename "$sensor" .png)
+    for other in E5 F5 HIH; do
+      [ "$other" = "$env" ] && continue
+      dir="$work/wrong/$name-on-$other"
+      mkdir -p "$dir"
+      {
+        echo "floorplan: $data/$other/layout/${other}_layout.png"
+        echo "floorplan_resolution: 0.05"
+        echo "gridmap: $sensor"
+        echo "gridmap_resolution: 0.05"
+      } > "$dir/dataset.yaml"
+      "$bin" align "$dir" --maps-only --out "$dir/align" > "$dir/align.log" 2>&1
+      rc=$?
+      flagged=no
+      [ $rc -ne 0 ] && grep -q "no alignment found" "$dir/align.log" && flagged=yes
+      # A rejected alignment writes no outputs: its figures are in the message.
+      read -r fit runner reg < <("$py" - "$dir/align.log" <<'PY'
+import re, sys
+text = open(sys.argv[1]).read()
+fit = re.findall(r"fitness (-?[0-9.]+)", text)
+reg = re.search(r"score (-?[0-9.]+) \(runner-up (-?[0-9.]+)\)", text)
+print(fit[-1] if fit else "-", reg.group(2) if reg else "-", reg.group(1) if reg else "-")
+PY
+)
+      printf '%-8s %-7s %6s %8s %6s %3s %s\n' "$name" "$other" "$fit" "$runner" "$reg" "$rc" "$flagged"
+    done
+  done
+done | tee "$work/wrong.txt"
+echo
+awk '{ n++; if ($7 == "yes") ok++; else miss = miss " " $1 "-on-" $2 }
+     END { printf "wrong building flagged: %d/%d%s\n", ok, n, (miss ? "; not flagged:" miss : "") }' \
+  "$work/wrong.txt"
 echo "outputs in $work"

@@ -150,6 +150,8 @@ json metrics_json(const Alignment& a, const std::string& dataset, const Alignmen
     const ScoredSimilarity& r = m.registration.best;
     j["maps_only"] = {{"accepted", m.accepted},
                       {"fitness", number(m.fit.score)},
+                      {"min_fitness", number(m.min_fitness)},
+                      {"ambiguity", number(m.ambiguity)},
                       {"on_walls", number(m.fit.on_walls)},
                       {"in_free_space", number(m.fit.in_free_space)},
                       {"pairs", m.pairs.size()},
@@ -167,6 +169,14 @@ json metrics_json(const Alignment& a, const std::string& dataset, const Alignmen
                         {"runner_up_score", number(m.registration.runner_up.score)},
                         {"correlation", m.registration.correlation},
                         {"seconds", number(m.registration.seconds)}}}};
+    if (m.runner_up) {
+      j["maps_only"]["runner_up"] = {
+          {"fitness", number(m.runner_up->fit.score)},
+          {"on_walls", number(m.runner_up->fit.on_walls)},
+          {"in_free_space", number(m.runner_up->fit.in_free_space)},
+          {"scale", number(m.runner_up->start.scale)},
+          {"theta_deg", number(m.runner_up->start.theta * 180.0 / 3.14159265358979323846)}};
+    }
   }
   j["plan_scale"] = number(l.plan_scale);
   j["plan_scale_std"] = number(l.plan_scale_std);
@@ -204,6 +214,7 @@ json metrics_json(const Alignment& a, const std::string& dataset, const Alignmen
                     {"scale_search", l.scale_search_seconds},
                     {"localize", l.localize_seconds},
                     {"pairs", l.pairs_seconds},
+                    {"maps_alignment", a.maps ? a.maps->seconds : 0.0},
                     {"wall_slide", a.wall_slide_seconds},
                     {"fit", a.fit_seconds},
                     {"evaluate", a.evaluate_seconds},

@@ -888,6 +888,10 @@ void visit(OptionVisitor& v, MapRegistrationOptions& o) {
                   "(> 1: always, < -1: never)",
            .choices = {}});
   v.group("correlation", "That 2-D correlation search", [&] { visit(v, o.correlation); });
+  v.field("alternatives", o.alternatives,
+          {.unit = "",
+           .doc = "Distinct other candidates kept (the maps-only alignment bends them too)",
+           .choices = {}});
 }
 
 void visit(OptionVisitor& v, PlanLocationOptions& o) {
@@ -1111,6 +1115,14 @@ void visit(OptionVisitor& v, MapAlignmentOptions& o) {
   v.field("min_fitness", o.min_fitness,
           {.unit = "",
            .doc = "Accepted when on_walls - in_free_space after the refinement is at least this",
+           .choices = {}});
+  v.field("min_on_walls", o.min_on_walls,
+          {.unit = "",
+           .doc = "Accepted when at least this share of the gridmap's walls lie on the plan's",
+           .choices = {}});
+  v.field("max_ambiguity", o.max_ambiguity,
+          {.unit = "",
+           .doc = "Not accepted when the best other place, bent too, fits this share of it",
            .choices = {}});
   v.field("correlation_below", o.correlation_below,
           {.unit = "",

@@ -136,6 +136,54 @@ std::string why_chosen(const ReportContext& c) {
       html_escape(c.chosen), why, paired ? "<th>held-out rms (compared)</th>" : "", rows);
 }
 
+/// Where the pairs came from: "run", "maps" (the maps alone) or "both" (metrics.json
+/// pairs.source; "run" when a folder predates it).
+std::string pair_source(const ReportContext& c) {
+  const json& source = json_at(c.metrics(), {"pairs", "source"});
+  return source.is_string() ? source.get<std::string>() : "run";
+}
+
+/// The maps-only alignment (metrics.json maps_only): the global registration, the bending, the
+/// fitness and its verdict.
+std::string maps_alignment_body(const json& m) {
+  const json& r = json_at(m, {"registration"});
+  const bool accepted = json_at(m, {"accepted"}) == json(true);
+  const double turn = number_or(json_at(r, {"theta_deg"}), NAN);
+  std::string body = fmt::format(
+      "<p>The gridmap was registered on the plan as a whole: plan scale <b>{}</b> (plan metres "
+      "per world metre {}), turned <b>{:.1f}&deg;</b>, score {:.2f} ({} of its walls on the "
+      "plan's, {} of the plan's walls in space it saw free){}; the best other answer scored "
+      "{:.2f}. Then it was bent onto the plan's walls in {} stages of a displacement lattice, "
+      "coarse to fine: of its {} wall points, <b>{}</b> ended within reach of a plan wall and "
+      "became the pairs (median {} from it).</p>\n",
+      format_ratio(json(1.0 / number_or(json_at(r, {"scale"}), NAN))),
+      format_ratio(json_at(r, {"scale"})), turn, number_or(json_at(r, {"score"}), NAN),
+      format_percent(json_at(r, {"on_walls"})), format_percent(json_at(r, {"in_free_space"})),
+      json_at(r, {"correlation"}) == json(true) ? ", found by a 2-D correlation search" : "",
+      number_or(json_at(r, {"runner_up_score"}), NAN), format_count(json_at(m, {"stages"})),
+      format_count(json_at(m, {"points"})), format_count(json_at(m, {"pairs"})),
+      format_metres(json_at(m, {"median_distance_m"})));
+  const json& least = json_at(m, {"min_fitness"});
+  body += fmt::format(
+      "<p class=\"{}\">Fitness of the bent gridmap: <b>{:.2f}</b>{} ({} of its walls on the "
+      "plan's, {} of the plan's walls in space it saw free): {}.</p>\n",
+      accepted ? "" : "warning", number_or(json_at(m, {"fitness"}), NAN),
+      least.is_number() ? fmt::format(", at least {:.2f} needed", least.get<double>()) : "",
+      format_percent(json_at(m, {"on_walls"})), format_percent(json_at(m, {"in_free_space"})),
+      accepted ? "accepted" : "not accepted, " + html_escape(text_of(json_at(m, {"diagnosis"}))));
+  const json& ambiguity = json_at(m, {"ambiguity"});
+  if (ambiguity.is_number()) {
+    body += fmt::format(
+        "<p class=\"muted\">Ambiguity {:.2f}: how near the best other place came to this one "
+        "(1: as good).</p>\n",
+        ambiguity.get<double>());
+  }
+  body +=
+      fmt::format("<p class=\"muted\">Took {} (the registration {}).</p>\n",
+                  format_seconds(json_at(m, {"seconds"})), format_seconds(json_at(r, {"seconds"})));
+  return body;
+}
+
 std::string card(const std::string& title, const std::string& value, const std::string& note) {
   return fmt::format(
       "<div class=\"card\"><div class=\"card-title\">{}</div><div class=\"card-value\">{}</div>"
@@ -198,15 +246,30 @@ std::string summary_section(const ReportContext& c) {
   cards += card(
       "Cross-validated error", format_metres(json_at(chosen, {"cv_error_m"})),
       fmt::format("on held-out pairs ({})", html_escape(text_of(json_at(chosen, {"cv_kind"})))));
-  cards += card("Pairs", format_count(json_at(m, {"pairs", "count"})),
-                fmt::format("from {} scans", format_count(json_at(m, {"pairs", "scans"}))));
-  cards += card("Converged", format_percent(json_at(m, {"pairs", "converged_fraction"})),
-                "of the scans, both filters sure");
+  const std::string source = pair_source(c);
+  const json& maps = json_at(m, {"maps_only"});
+  if (source == "maps") {
+    cards += card("Pairs", format_count(json_at(m, {"pairs", "count"})),
+                  "from the maps alone: gridmap walls on the plan's");
+  } else {
+    cards += card("Pairs", format_count(json_at(m, {"pairs", "count"})),
+                  fmt::format("from {} scans{}", format_count(json_at(m, {"pairs", "scans"})),
+                              source == "both" ? " and the maps" : ""));
+    cards += card("Converged", format_percent(json_at(m, {"pairs", "converged_fraction"})),
+                  "of the scans, both filters sure");
+  }
+  if (maps.is_object()) {
+    cards += card("Maps fitness", fmt::format("{:.2f}", number_or(json_at(maps, {"fitness"}), NAN)),
+                  json_at(maps, {"accepted"}) == json(true)
+                      ? "the bent gridmap on the plan: accepted"
+                      : "the bent gridmap on the plan: <b>not accepted</b>");
+  }
   const bool estimated = json_at(m, {"plan_scale_estimated"}) == json(true);
   cards += card("Plan scale", format_ratio(json_at(m, {"plan_scale"})),
-                estimated ? fmt::format("&plusmn; {}, estimated from the run",
-                                        format_ratio(json_at(m, {"plan_scale_std"})))
-                          : "given");
+                !estimated         ? std::string("given")
+                : source == "maps" ? std::string("estimated from the maps")
+                                   : fmt::format("&plusmn; {}, estimated from the run",
+                                                 format_ratio(json_at(m, {"plan_scale_std"}))));
   const json& match = json_at(m, {"plan_match"});
   if (match.is_object()) {
     cards += card("Plan match", fmt::format("{:.2f}", number_or(match["score"], NAN)),
@@ -343,10 +406,22 @@ std::string wall_slide_paragraph(const json& slide) {
 
 std::string pairs_section(const ReportContext& c) {
   const json& pairs = json_at(c.metrics(), {"pairs"});
+  const std::string source = pair_source(c);
   std::string body =
-      fmt::format("<p><b>{}</b> pairs from <b>{}</b> scans, made in {} converged periods.",
-                  format_count(json_at(pairs, {"count"})), format_count(json_at(pairs, {"scans"})),
-                  format_count(json_at(pairs, {"converged_periods"})));
+      source == "maps"
+          ? fmt::format(
+                "<p><b>{}</b> pairs from the maps alone: gridmap wall points and the plan "
+                "wall surfaces they were bent onto (see <a "
+                "href=\"#localization\">Alignment from the maps</a>).",
+                format_count(json_at(pairs, {"count"})))
+          : fmt::format(
+                "<p><b>{}</b> pairs from <b>{}</b> scans, made in {} converged periods{}.",
+                format_count(json_at(pairs, {"count"})), format_count(json_at(pairs, {"scans"})),
+                format_count(json_at(pairs, {"converged_periods"})),
+                source == "both"
+                    ? fmt::format(", and {} from the maps alone",
+                                  format_count(json_at(c.metrics(), {"maps_only", "pairs"})))
+                    : "");
   if (json_at(pairs, {"error_median_m"}).is_number()) {
     body += fmt::format(" Their error against the truth: median {}, mean {}, 95% under {}.",
                         format_metres(json_at(pairs, {"error_median_m"})),
@@ -395,6 +470,14 @@ std::string pairs_section(const ReportContext& c) {
 }
 
 std::string localization_section(const ReportContext& c) {
+  const json& maps = json_at(c.metrics(), {"maps_only"});
+  if (pair_source(c) == "maps") {
+    return section("localization", "Alignment from the maps",
+                   "No robot run: the gridmap was placed on the plan and bent onto its walls, and "
+                   "the fitness says whether to trust it.",
+                   maps.is_object() ? maps_alignment_body(maps)
+                                    : "<p class=\"muted\">No maps_only in metrics.json.</p>\n");
+  }
   const json& l = json_at(c.metrics(), {"localization"});
   std::string body = fmt::format(
       "<p>Both filters converged on <b>{}</b> of the scans. The gridmap filter first converged "
@@ -436,6 +519,8 @@ std::string localization_section(const ReportContext& c) {
   } else {
     body += "<p class=\"muted\">No scans.csv in this folder: no scan-by-scan chart.</p>\n";
   }
+  if (maps.is_object())
+    body += "<h3>Alignment from the maps</h3>\n" + maps_alignment_body(maps);
   return section("localization", "Localization over time",
                  "Scan by scan, whether each filter knew where the robot was: pairs are made only "
                  "where both bars are present.",
@@ -531,9 +616,9 @@ std::string timings_section(const ReportContext& c) {
   }
   std::string rows;
   // The stages in the order the job runs them (metrics.json's object is sorted by name).
-  std::vector<std::string> stages = {
-      "load", "global_localization", "scale_search", "localize", "pairs", "fit", "evaluate",
-      "write"};
+  std::vector<std::string> stages = {"load",  "global_localization", "scale_search", "localize",
+                                     "pairs", "maps_alignment",      "fit",          "evaluate",
+                                     "write"};
   for (const auto& [stage, seconds] : t.items()) {
     if (std::find(stages.begin(), stages.end(), stage) == stages.end())
       stages.push_back(stage);

@@ -162,8 +162,15 @@ MapAlignment align_on_maps(const AlignmentInputs& in, const AlignmentOptions& op
         "walls on the plan's, {:.0f}% of the plan's walls in free space) in {:.1f} s",
         s.scale, s.theta * 180.0 / std::numbers::pi, m.registration.best.score,
         m.registration.runner_up.score, m.stages, m.pairs.size(), m.points,
-        options.maps_only.pair_radius, m.fit.score, 100.0 * m.fit.on_walls, 100.0 * m.fit.in_free_space,
-        m.seconds));
+        options.maps_only.pair_radius, m.fit.score, 100.0 * m.fit.on_walls,
+        100.0 * m.fit.in_free_space, m.seconds));
+    if (m.runner_up) {
+      l.notes.push_back(fmt::format(
+          "maps only: the best other place, bent as well, has fitness {:.2f} (scale {:.4f}, "
+          "turned {:.1f} deg)",
+          m.runner_up->fit.score, m.runner_up->start.scale,
+          m.runner_up->start.theta * 180.0 / std::numbers::pi));
+    }
   }
   if (!m.accepted)
     l.notes.push_back(no_alignment_message(m, options.maps_only));

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "floorgrid/geometry/reference_pairs.hpp"
@@ -17,19 +18,34 @@ struct MapAlignmentOptions {
   /// World metres: a gridmap wall point is matched to a plan wall this near (first stage); the
   /// radius shrinks geometrically to last_radius in the finest stage.
   double first_radius = 1.0;
-  double last_radius = 0.3;      ///< world metres
-  int rounds = 3;                ///< correspondence rounds per stage
-  double stiffness = 1.0;        ///< the lattice's membrane weight (DisplacementLattice::fit)
-  double point_spacing = 0.2;    ///< world metres between the gridmap wall points used
+  double last_radius = 0.3;  ///< world metres
+  int rounds = 3;            ///< correspondence rounds per stage
+  double stiffness = 1.0;    ///< the lattice's membrane weight (DisplacementLattice::fit)
+  /// World metres between the gridmap wall points used. 0.2 gave Seattle-2 and fr079-2
+  /// (semi-real) 112 and 344 pairs and a best model 1.7x and 2.3x the run-based error; 0.1,
+  /// 1.3x both.
+  double point_spacing = 0.1;
   double max_normal_angle = 30;  ///< degrees between matched walls' directions, at most
   /// World metres: the final correspondences this near their plan wall become the pairs.
   double pair_radius = 0.15;
   /// The alignment is accepted when its fitness (MapFit::score of the bent map) is at least
   /// this. On the 32 Halmstad sensor maps the right alignments measured 0.24-0.69; sensor maps
   /// on another building's layout (and fr079's map on E5's, E5's on fr079's drawing) -0.13 to
-  /// 0.17, and 0.35 for a small map (HIH_01) inside a large building (E5), which this does not
-  /// catch.
+  /// 0.23 (64 runs: every map on the two other buildings' layouts), and small maps (HIH's)
+  /// inside a large building 0.32-0.40, which min_on_walls and max_ambiguity catch.
   double min_fitness = 0.2;
+  /// Not accepted either when fewer of the bent gridmap's walls than this lie on the plan's
+  /// (MapFit::on_walls): a map that fits its own building explains most of its walls. The
+  /// right Halmstad alignments measured 0.43-0.75, the semi-real ones 0.80-0.96; sensor maps on
+  /// another building's layout that passed the fitness, 0.29-0.42 (F5_01 on E5: fitness 0.23,
+  /// on_walls 0.30).
+  double min_on_walls = 0.4;
+  /// Not accepted either when the registration's best other place, bent as well, reaches this
+  /// share of the fitness (MapAlignment::ambiguity): the maps do not tell where the gridmap
+  /// is. The right Halmstad alignments measured 0.0-0.83 (the small HIH maps fit their small
+  /// building shrunk too); HIH's maps on E5's and F5's layouts, which pass the fitness and
+  /// (two of them) on_walls, 0.98-1.08.
+  double max_ambiguity = 0.9;
   /// The registration's correlation_below here (> 1: its 2-D correlation search always runs:
   /// the wall profiles' 1-D search registered 12 of the 27 Halmstad sensor maps, with it all 27).
   double correlation_below = 2.0;
@@ -47,7 +63,20 @@ struct MapAlignment {
   /// The bent gridmap's fit (MapFitScorer, on the registration's final wall points): its score
   /// is the fitness.
   MapFit fit;
-  bool accepted = false;           ///< fit.score >= min_fitness
+  /// Another place the gridmap could be: a registration alternative, bent as the best was.
+  struct Other {
+    MapSimilarity start;  ///< the registration's similarity it was bent from
+    MapFit fit;           ///< its bent map's fit
+  };
+  /// The best-fitting of the registration's alternatives once bent (none when it had none).
+  std::optional<Other> runner_up;
+  /// The runner-up's fitness over the fitness (0 without a runner-up or below zero, 1 when the
+  /// fitness is not positive): near 1, another place fits as well.
+  double ambiguity = 0.0;
+  double min_fitness = 0.0;  ///< the options' min_fitness, which it was judged by
+  /// fit.score >= min_fitness, fit.on_walls >= min_on_walls, ambiguity < max_ambiguity and at
+  /// least 3 pairs
+  bool accepted = false;
   std::string diagnosis;           ///< why not accepted (empty when accepted)
   std::size_t points = 0;          ///< gridmap wall points used
   int stages = 0;                  ///< lattice stages run

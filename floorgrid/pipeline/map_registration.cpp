@@ -332,6 +332,8 @@ void validate(const MapRegistrationOptions& o, const std::string& prefix) {
   positive(o.correlation.scale_step, "correlation.scale_step");
   require_option(o.correlation.peaks >= 1, prefix + "correlation.peaks", o.correlation.peaks,
                  ">= 1");
+  require_option(o.alternatives >= 1 && o.alternatives <= 100, prefix + "alternatives",
+                 o.alternatives, "in 1..100");
 }
 
 MapRegistration register_maps(const OccupancyGrid& gridmap, const OccupancyGrid& plan,
@@ -380,19 +382,24 @@ MapRegistration register_maps(MapFitScorer& scorer, const MapRegistrationOptions
     return result;
   result.found = true;
   result.best = refined.front();
-  const auto runner_up = std::find_if(refined.begin(), refined.end(), [&](const auto& s) {
-    return distinct(s.transform, result.best.transform, centre);
-  });
-  if (runner_up != refined.end())
-    result.runner_up = *runner_up;
+  for (const ScoredSimilarity& s : refined) {
+    if (result.alternatives.size() >= static_cast<std::size_t>(options.alternatives))
+      break;
+    if (distinct(s.transform, result.best.transform, centre) &&
+        std::all_of(result.alternatives.begin(), result.alternatives.end(),
+                    [&](const auto& a) { return distinct(s.transform, a.transform, centre); }))
+      result.alternatives.push_back(s);
+  }
   if (options.final_points > options.max_points) {
     // The thinned points' scale is off by up to 0.1% (sampling): the winner once more on
-    // (almost) every wall point, the runner-up scored on the same points.
+    // (almost) every wall point, the others scored on the same points.
     scorer.use_points(options.final_points);
     result.best = refine_fine(scorer, result.best.transform, options.sigma, options);
-    if (runner_up != refined.end())
-      result.runner_up = scorer.score(result.runner_up.transform, options.sigma);
+    for (ScoredSimilarity& a : result.alternatives)
+      a = scorer.score(a.transform, options.sigma);
   }
+  if (!result.alternatives.empty())
+    result.runner_up = result.alternatives.front();
   result.seconds = seconds_since(clock);
   return result;
 }

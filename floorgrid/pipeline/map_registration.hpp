@@ -36,6 +36,8 @@ struct MapRegistrationOptions {
   /// profiles' scored 0.29, and every model's error doubled (gp 0.46 -> 0.97 m).
   double correlation_below = -2.0;
   MapCorrelationOptions correlation;  ///< that search's lattice
+  /// How many distinct other candidates MapRegistration::alternatives keeps.
+  int alternatives = 4;
 };
 
 /// Checks `options`; throws InputError naming `<prefix><field>`.
@@ -49,6 +51,10 @@ struct MapRegistration {
   /// The best candidate of another scale (beyond 5%) or pose (beyond 2 m or 10 degrees): how
   /// clearly the best won.
   ScoredSimilarity runner_up;
+  /// The refined candidates distinct from the best and from each other, best first (the first
+  /// is the runner-up), at most MapRegistrationOptions::alternatives: other places the gridmap
+  /// could be, for an alignment that looks further than the similarity.
+  std::vector<ScoredSimilarity> alternatives;
   std::size_t candidates = 0;  ///< verified in 2D
   bool correlation = false;    ///< whether the 2-D correlation search ran
   double seconds = 0.0;        ///< wall clock

@@ -191,6 +191,72 @@ TEST(ReportHtml, AFolderWithOnlyMetricsIsReportedAndWithoutMetricsRefused) {
   EXPECT_FALSE(fs::exists(empty / "report.html"));
 }
 
+/// small_metrics() as a maps-only alignment wrote it: no scans, pairs from the maps, maps_only.
+json maps_only_metrics(bool accepted) {
+  json m = small_metrics();
+  m["pairs"] = {{"count", 1397}, {"scans", 0}, {"source", "maps"}};
+  m["maps_only"] = {{"accepted", accepted},
+                    {"fitness", 0.4567},
+                    {"min_fitness", 0.2},
+                    {"on_walls", 0.548},
+                    {"in_free_space", 0.088},
+                    {"pairs", 1397},
+                    {"points", 4838},
+                    {"stages", 3},
+                    {"median_distance_m", 0.0621},
+                    {"diagnosis", accepted ? "" : "another <place> fits as well"},
+                    {"seconds", 8.38},
+                    {"registration",
+                     {{"scale", 0.8279},
+                      {"theta_deg", 267.04},
+                      {"score", 0.18},
+                      {"on_walls", 0.356},
+                      {"in_free_space", 0.177},
+                      {"runner_up_score", 0.09},
+                      {"correlation", true},
+                      {"seconds", 8.29}}}};
+  return m;
+}
+
+TEST(ReportHtml, AMapsOnlyAlignmentShowsItsRegistrationBendingAndFitness) {
+  TempDir dir;
+  const json m = maps_only_metrics(true);
+  write_folder(dir.path(), m, false);
+  const std::string html = test::read_file(io::write_report_html(dir.path()));
+  // Its own section instead of the filters' story, and no "from 0 scans".
+  EXPECT_NE(html.find("Alignment from the maps"), std::string::npos);
+  EXPECT_EQ(html.find("from 0 scans"), std::string::npos);
+  EXPECT_EQ(html.find("Both filters converged"), std::string::npos);
+  for (const std::string& expected :
+       {io::format_count(m["maps_only"]["points"]), io::format_count(m["pairs"]["count"]),
+        io::format_metres(m["maps_only"]["median_distance_m"]),
+        io::format_percent(m["maps_only"]["on_walls"]), io::format_ratio(json(1.0 / 0.8279)),
+        std::string("267.0&deg;"), std::string("<b>0.46</b>, at least 0.20 needed"),
+        std::string("estimated from the maps")})
+    EXPECT_NE(html.find(expected), std::string::npos) << expected;
+  EXPECT_EQ(html.find("not accepted"), std::string::npos);
+
+  // Not accepted: said as a warning, with the diagnosis escaped.
+  TempDir rejected;
+  write_folder(rejected.path(), maps_only_metrics(false), false);
+  const std::string warning = test::read_file(io::write_report_html(rejected.path()));
+  EXPECT_NE(warning.find("not accepted, another &lt;place&gt; fits as well"), std::string::npos);
+  EXPECT_NE(warning.find("<b>not accepted</b>"), std::string::npos);
+}
+
+TEST(ReportHtml, ARunWithTheMapsPairsAddedShowsBoth) {
+  TempDir dir;
+  json m = maps_only_metrics(true);
+  m["pairs"] = small_metrics()["pairs"];
+  m["pairs"]["source"] = "both";
+  write_folder(dir.path(), m, true);
+  const std::string html = test::read_file(io::write_report_html(dir.path()));
+  EXPECT_NE(html.find("Both filters converged"), std::string::npos);
+  EXPECT_NE(html.find("<h3>Alignment from the maps</h3>"), std::string::npos);
+  EXPECT_NE(html.find("and " + io::format_count(1397) + " from the maps alone"), std::string::npos);
+  EXPECT_NE(html.find("from " + io::format_count(40) + " scans and the maps"), std::string::npos);
+}
+
 TEST(Base64, EncodesRfc4648Vectors) {
   EXPECT_EQ(io::base64_encode(""), "");
   EXPECT_EQ(io::base64_encode("f"), "Zg==");

@@ -81,6 +81,42 @@ TEST(MapAlignment, AnotherBuildingsPlanFitsFarWorse) {
   EXPECT_LT(wrong.fit.score, 0.5 * right.fit.score);
 }
 
+// The grid twice, side by side with a gap of `gap` cells: a building with two identical wings.
+OccupancyGrid twice(const OccupancyGrid& grid, int gap) {
+  GridGeometry g = grid.geometry();
+  g.width = 2 * grid.width() + gap;
+  OccupancyGrid out(g);
+  for (int iy = 0; iy < grid.height(); ++iy) {
+    for (int ix = 0; ix < grid.width(); ++ix) {
+      out.set_state(ix, iy, grid.state(ix, iy));
+      out.set_state(ix + grid.width() + gap, iy, grid.state(ix, iy));
+    }
+  }
+  return out;
+}
+
+TEST(MapAlignment, TwoPlacesThatFitAlikeAreNotAnAnswer) {
+  const SimulatedDataset& d = bent_office();
+  const OccupancyGrid plan = plan_grid(d);
+  const MapAlignment one = align_maps(d.gridmap, plan, PlanWalls::vector_lines);
+  ASSERT_TRUE(one.accepted) << one.diagnosis;
+  // The right place beats every other the registration found, bent too (measured: 0.61).
+  EXPECT_LT(one.ambiguity, 0.75);
+  const MapAlignment two = align_maps(d.gridmap, twice(plan, 40), PlanWalls::vector_lines);
+  EXPECT_FALSE(two.accepted);
+  EXPECT_GE(two.fit.score, 0.9 * one.fit.score);  // it fits: the fitness alone would pass it
+  ASSERT_TRUE(two.runner_up.has_value());
+  EXPECT_GT(two.ambiguity, 0.9);
+  EXPECT_NE(two.diagnosis.find("another place fits about as well"), std::string::npos)
+      << two.diagnosis;
+  // The two answers are the two wings: a wing's width apart, at the same scale and turn.
+  const MapSimilarity& a = two.registration.best.transform;
+  const MapSimilarity& b = two.runner_up->start;
+  const double wing = (plan.width() + 40) * plan.resolution();
+  EXPECT_NEAR(std::abs((a.translation - b.translation).x()), wing, 0.5);
+  EXPECT_NEAR(a.scale / b.scale, 1.0, 0.01);
+}
+
 TEST(MapAlignment, BadOptionsNameTheirField) {
   MapAlignmentOptions o;
   o.last_spacing = 20.0;
