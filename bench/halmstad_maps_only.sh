@@ -144,13 +144,14 @@ for env in E5 F5 HIH; do
       rc=$?
       flagged=no
       [ $rc -ne 0 ] && grep -q "no alignment found" "$dir/align.log" && flagged=yes
-      # A rejected alignment writes no outputs: its figures are in the message.
+      # A rejected alignment writes no outputs: its figures are in the message (the first
+      # fitness; an accepted one notes its runner-up's after it).
       read -r fit runner reg < <("$py" - "$dir/align.log" <<'PY'
 import re, sys
 text = open(sys.argv[1]).read()
 fit = re.findall(r"fitness (-?[0-9.]+)", text)
 reg = re.search(r"score (-?[0-9.]+) \(runner-up (-?[0-9.]+)\)", text)
-print(fit[-1] if fit else "-", reg.group(2) if reg else "-", reg.group(1) if reg else "-")
+print(fit[0] if fit else "-", reg.group(2) if reg else "-", reg.group(1) if reg else "-")
 PY
 )
       printf '%-8s %-7s %6s %8s %6s %3s %s\n' "$name" "$other" "$fit" "$runner" "$reg" "$rc" "$flagged"

@@ -38,7 +38,7 @@ struct MapAlignmentOptions {
   /// (MapFit::on_walls): a map that fits its own building explains most of its walls. The
   /// right Halmstad alignments measured 0.43-0.75, the semi-real ones 0.80-0.96; sensor maps on
   /// another building's layout that passed the fitness, 0.29-0.42 (F5_01 on E5: fitness 0.23,
-  /// on_walls 0.30).
+  /// on_walls 0.30; those above 0.4, small maps, are ambiguous).
   double min_on_walls = 0.4;
   /// Not accepted either when the registration's best other place, bent as well, reaches this
   /// share of the fitness (MapAlignment::ambiguity): the maps do not tell where the gridmap
