@@ -200,6 +200,64 @@ TEST(PairsCommand, OfficeInchesFindsTheUnitMixUp) {
   EXPECT_LE(errors[errors.size() / 2], 0.05);
 }
 
+/// The manifest at `path` without its `key:` line.
+void drop_key(const fs::path& path, const std::string& key) {
+  std::string manifest = test::read_file(path);
+  const std::size_t at = manifest.find("\n" + key + ":");
+  ASSERT_NE(at, std::string::npos) << key;
+  manifest.erase(at + 1, manifest.find('\n', at + 1) - at);
+  test::write_file(path, manifest);
+}
+
+/// The value of the manifest's `key:` line, as written.
+std::string key_value(const fs::path& path, const std::string& key) {
+  const std::string manifest = test::read_file(path);
+  const std::size_t at =
+      manifest.find_first_not_of(' ', manifest.find("\n" + key + ":") + key.size() + 2);
+  return manifest.substr(at, manifest.find('\n', at) - at);
+}
+
+TEST(AlignCommand, WithoutALogTheMapsAloneGiveThePairsOrSayWhyNot) {
+  TempDir dir;
+  ASSERT_EQ(
+      run_floorgrid("simulate --preset bent-office --seed 1 --out " + quoted(dir / "data")).status,
+      0);
+  drop_key(dir / "data" / "dataset.yaml", "log");
+  const auto run = run_floorgrid("align " + quoted(dir / "data") + " --out " + quoted(dir / "out"));
+  ASSERT_EQ(run.status, 0) << run.out << run.err;
+  const json m = read_json(dir / "out" / "metrics.json");
+  EXPECT_EQ(m["pairs"]["source"], "maps");
+  EXPECT_TRUE(m["maps_only"]["accepted"].get<bool>());
+  EXPECT_GE(m["maps_only"]["fitness"].get<double>(), m["maps_only"]["min_fitness"].get<double>());
+  EXPECT_LT(m["maps_only"]["ambiguity"].get<double>(), 0.9);
+  EXPECT_GT(m["pairs"]["count"].get<int>(), 300);
+  // Against the simulator's exact warp, a 1 m bend followed from the maps alone.
+  const double gp = m["models"]["gp"]["mean_error_m"].get<double>();
+  EXPECT_LE(gp, 0.15);
+  EXPECT_LT(gp, m["models"]["gt"]["mean_error_m"].get<double>());
+  const std::string report = test::read_file(dir / "out" / "report.html");
+  EXPECT_NE(report.find("Alignment from the maps"), std::string::npos);
+  EXPECT_EQ(report.find("from 0 scans"), std::string::npos);
+
+  // The same gridmap on the warehouse's plan: no alignment, the fitness said, nothing written.
+  ASSERT_EQ(
+      run_floorgrid("simulate --preset warehouse --seed 1 --out " + quoted(dir / "other")).status,
+      0);
+  drop_key(dir / "other" / "dataset.yaml", "log");
+  std::string manifest = test::read_file(dir / "other" / "dataset.yaml");
+  const std::string gridmap = key_value(dir / "other" / "dataset.yaml", "gridmap");
+  manifest.replace(manifest.find(gridmap), gridmap.size(),
+                   "\"" + (dir / "data" / "gridmap.yaml").string() + "\"");
+  test::write_file(dir / "other" / "dataset.yaml", manifest);
+  const auto wrong =
+      run_floorgrid("align " + quoted(dir / "other") + " --out " + quoted(dir / "wrong"));
+  EXPECT_NE(wrong.status, 0) << wrong.out;
+  EXPECT_NE(wrong.err.find("no alignment found from the maps alone"), std::string::npos)
+      << wrong.err;
+  EXPECT_NE(wrong.err.find("fitness"), std::string::npos) << wrong.err;
+  EXPECT_FALSE(fs::exists(dir / "wrong" / "model.json"));
+}
+
 TEST(AlignCommand, BadInputExitsWithTwoAndWritesNothing) {
   TempDir dir;
   const auto missing =
