@@ -206,8 +206,6 @@ MapAlignment align_maps(const OccupancyGrid& gridmap, const OccupancyGrid& plan,
   std::vector<Eigen::Vector2d> plan_side, grid_side;
   std::vector<double> distances;
   for (const WallPoint& w : points) {
-    if (w.normal.squaredNorm() == 0.0)
-      continue;  // a corner or a blob (clutter) tells no wall it lies on
     const Match m = match_to_plan(field, warp, w, o.pair_radius * scale, step, min_cosine);
     if (!m.found)
       continue;
