@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <numbers>
 
 #include "floorgrid/evaluation/overlay.hpp"
 #include "floorgrid/io/atomic_file.hpp"
@@ -150,8 +151,10 @@ json metrics_json(const Alignment& a, const std::string& dataset, const Alignmen
     const ScoredSimilarity& r = m.registration.best;
     j["maps_only"] = {{"accepted", m.accepted},
                       {"fitness", number(m.fit.score)},
-                      {"min_fitness", number(m.min_fitness)},
+                      {"min_fitness", number(m.options.min_fitness)},
+                      {"min_on_walls", number(m.options.min_on_walls)},
                       {"ambiguity", number(m.ambiguity)},
+                      {"max_ambiguity", number(m.options.max_ambiguity)},
                       {"on_walls", number(m.fit.on_walls)},
                       {"in_free_space", number(m.fit.in_free_space)},
                       {"pairs", m.pairs.size()},
@@ -162,7 +165,7 @@ json metrics_json(const Alignment& a, const std::string& dataset, const Alignmen
                       {"seconds", number(m.seconds)},
                       {"registration",
                        {{"scale", number(r.transform.scale)},
-                        {"theta_deg", number(r.transform.theta * 180.0 / 3.14159265358979323846)},
+                        {"theta_deg", number(r.transform.theta * 180.0 / std::numbers::pi)},
                         {"score", number(r.score)},
                         {"on_walls", number(r.on_walls)},
                         {"in_free_space", number(r.in_free_space)},
@@ -175,7 +178,7 @@ json metrics_json(const Alignment& a, const std::string& dataset, const Alignmen
           {"on_walls", number(m.runner_up->fit.on_walls)},
           {"in_free_space", number(m.runner_up->fit.in_free_space)},
           {"scale", number(m.runner_up->start.scale)},
-          {"theta_deg", number(m.runner_up->start.theta * 180.0 / 3.14159265358979323846)}};
+          {"theta_deg", number(m.runner_up->start.theta * 180.0 / std::numbers::pi)}};
     }
   }
   j["plan_scale"] = number(l.plan_scale);

@@ -163,21 +163,22 @@ std::string maps_alignment_body(const json& m) {
       number_or(json_at(r, {"runner_up_score"}), NAN), format_count(json_at(m, {"stages"})),
       format_count(json_at(m, {"points"})), format_count(json_at(m, {"pairs"})),
       format_metres(json_at(m, {"median_distance_m"})));
-  const json& least = json_at(m, {"min_fitness"});
+  // A bar the folder states ("" for an older folder without it).
+  const auto bar = [&](const char* key, const char* text) {
+    const json& value = json_at(m, {key});
+    return value.is_number() ? fmt::format(fmt::runtime(text), value.get<double>()) : std::string();
+  };
   body += fmt::format(
-      "<p class=\"{}\">Fitness of the bent gridmap: <b>{:.2f}</b>{} ({} of its walls on the "
-      "plan's, {} of the plan's walls in space it saw free): {}.</p>\n",
+      "<p class=\"{}\">Fitness of the bent gridmap: <b>{:.2f}</b>{}; {} of its walls on the "
+      "plan's{}, {} of the plan's walls in space it saw free. Ambiguity {:.2f}{}: how well the "
+      "best other place the registration found fits, bent too, against this one (1: as well). "
+      "{}.</p>\n",
       accepted ? "" : "warning", number_or(json_at(m, {"fitness"}), NAN),
-      least.is_number() ? fmt::format(", at least {:.2f} needed", least.get<double>()) : "",
-      format_percent(json_at(m, {"on_walls"})), format_percent(json_at(m, {"in_free_space"})),
-      accepted ? "accepted" : "not accepted, " + html_escape(text_of(json_at(m, {"diagnosis"}))));
-  const json& ambiguity = json_at(m, {"ambiguity"});
-  if (ambiguity.is_number()) {
-    body += fmt::format(
-        "<p class=\"muted\">Ambiguity {:.2f}: how near the best other place came to this one "
-        "(1: as good).</p>\n",
-        ambiguity.get<double>());
-  }
+      bar("min_fitness", ", at least {:.2f} needed"), format_percent(json_at(m, {"on_walls"})),
+      bar("min_on_walls", " (at least {:.2f} needed)"),
+      format_percent(json_at(m, {"in_free_space"})), number_or(json_at(m, {"ambiguity"}), NAN),
+      bar("max_ambiguity", " (below {:.2f} needed)"),
+      accepted ? "Accepted" : "Not accepted: " + html_escape(text_of(json_at(m, {"diagnosis"}))));
   body +=
       fmt::format("<p class=\"muted\">Took {} (the registration {}).</p>\n",
                   format_seconds(json_at(m, {"seconds"})), format_seconds(json_at(r, {"seconds"})));

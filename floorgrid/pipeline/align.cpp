@@ -1,6 +1,7 @@
 #include "floorgrid/pipeline/align.hpp"
 
 #include <fmt/format.h>
+
 #include <algorithm>
 #include <chrono>
 #include <numbers>
@@ -137,14 +138,13 @@ PairSource parse_pair_source(const std::string& name, const std::string& field) 
 
 namespace {
 
-// Why the maps' alignment was not accepted, with its figures.
-std::string no_alignment_message(const MapAlignment& m, const MapAlignmentOptions& options) {
+// Why the maps' alignment was not accepted, with its figures (the fitness first).
+std::string no_alignment_message(const MapAlignment& m) {
   return fmt::format(
-      "no alignment found from the maps alone: {} (fitness {:.2f}, at least {:.2f} needed: "
-      "{:.0f}% of the gridmap's walls on the plan's, {:.0f}% of the plan's walls in space the "
-      "gridmap saw free)",
-      m.diagnosis, m.fit.score, options.min_fitness, 100.0 * m.fit.on_walls,
-      100.0 * m.fit.in_free_space);
+      "no alignment found from the maps alone (fitness {:.2f}: {:.0f}% of the gridmap's walls on "
+      "the plan's, {:.0f}% of the plan's walls in space the gridmap saw free; ambiguity {:.2f}): "
+      "{}",
+      m.fit.score, 100.0 * m.fit.on_walls, 100.0 * m.fit.in_free_space, m.ambiguity, m.diagnosis);
 }
 
 // The maps aligned (align_maps), with a note of what it found for the localization's story.
@@ -173,7 +173,7 @@ MapAlignment align_on_maps(const AlignmentInputs& in, const AlignmentOptions& op
     }
   }
   if (!m.accepted)
-    l.notes.push_back(no_alignment_message(m, options.maps_only));
+    l.notes.push_back(no_alignment_message(m));
   return m;
 }
 
@@ -190,7 +190,7 @@ void localize_on_maps(const AlignmentInputs& in, const AlignmentOptions& options
     return;
   }
   l.status = {false,
-              no_alignment_message(*a.maps, options.maps_only) +
+              no_alignment_message(*a.maps) +
                   ". Check that the plan and the gridmap show the same floor, or give a robot "
                   "run (log:)",
               "floorplan"};

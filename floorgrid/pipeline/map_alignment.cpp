@@ -165,7 +165,7 @@ MapAlignment align_maps(const OccupancyGrid& gridmap, const OccupancyGrid& plan,
   validate(o);
   const auto clock = std::chrono::steady_clock::now();
   MapAlignment a;
-  a.min_fitness = o.min_fitness;
+  a.options = o;
   MapRegistrationOptions search = registration;
   search.correlation_below = o.correlation_below;
   // One scorer for the registration and the bent map: the fitness is the registration's
@@ -225,16 +225,19 @@ MapAlignment align_maps(const OccupancyGrid& gridmap, const OccupancyGrid& plan,
   if (a.pairs.size() < 3)
     a.diagnosis = "fewer than 3 gridmap wall points lie on the plan's walls";
   else if (a.fit.score < o.min_fitness)
-    a.diagnosis = "the maps do not fit each other well enough";
+    a.diagnosis = fmt::format(
+        "the maps do not fit each other well enough (a fitness of {:.2f} "
+        "needed)",
+        o.min_fitness);
   else if (a.fit.on_walls < o.min_on_walls)
     a.diagnosis = fmt::format(
-        "only {:.0f}% of the gridmap's walls lie on the plan's walls (at least {:.0f}% needed)",
+        "only {:.0f}% of the gridmap's walls lie on the plan's (at least {:.0f}% needed)",
         100.0 * a.fit.on_walls, 100.0 * o.min_on_walls);
   else if (a.ambiguity >= o.max_ambiguity)
     a.diagnosis = fmt::format(
-        "another place fits about as well (fitness {:.2f} there, {:.0f}% of this one's, at most "
-        "{:.0f}% allowed): the maps do not tell where the gridmap is",
-        a.runner_up->fit.score, 100.0 * a.ambiguity, 100.0 * o.max_ambiguity);
+        "another place fits about as well ({:.0f}% as well, at most {:.0f}% allowed): the maps "
+        "do not tell where the gridmap is",
+        100.0 * a.ambiguity, 100.0 * o.max_ambiguity);
   a.accepted = a.diagnosis.empty();
   a.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock).count();
   return a;

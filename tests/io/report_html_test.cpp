@@ -198,6 +198,9 @@ json maps_only_metrics(bool accepted) {
   m["maps_only"] = {{"accepted", accepted},
                     {"fitness", 0.4567},
                     {"min_fitness", 0.2},
+                    {"min_on_walls", 0.4},
+                    {"ambiguity", 0.31},
+                    {"max_ambiguity", 0.9},
                     {"on_walls", 0.548},
                     {"in_free_space", 0.088},
                     {"pairs", 1397},
@@ -232,15 +235,16 @@ TEST(ReportHtml, AMapsOnlyAlignmentShowsItsRegistrationBendingAndFitness) {
         io::format_metres(m["maps_only"]["median_distance_m"]),
         io::format_percent(m["maps_only"]["on_walls"]), io::format_ratio(json(1.0 / 0.8279)),
         std::string("267.0&deg;"), std::string("<b>0.46</b>, at least 0.20 needed"),
+        std::string("(at least 0.40 needed)"), std::string("Ambiguity 0.31 (below 0.90 needed)"),
         std::string("estimated from the maps")})
     EXPECT_NE(html.find(expected), std::string::npos) << expected;
-  EXPECT_EQ(html.find("not accepted"), std::string::npos);
+  EXPECT_EQ(html.find("ot accepted"), std::string::npos);
 
   // Not accepted: said as a warning, with the diagnosis escaped.
   TempDir rejected;
   write_folder(rejected.path(), maps_only_metrics(false), false);
   const std::string warning = test::read_file(io::write_report_html(rejected.path()));
-  EXPECT_NE(warning.find("not accepted, another &lt;place&gt; fits as well"), std::string::npos);
+  EXPECT_NE(warning.find("Not accepted: another &lt;place&gt; fits as well"), std::string::npos);
   EXPECT_NE(warning.find("<b>not accepted</b>"), std::string::npos);
 }
 
