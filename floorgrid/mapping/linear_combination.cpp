@@ -59,33 +59,114 @@ bool well_shaped(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen
   return twice_area >= min_sin * lab * lac && twice_area >= min_sin * lab * lbc &&
          twice_area >= min_sin * lac * lbc;
 }
+
+/// Whether some of the first `count` neighbours, seen from c, lie off the line from c to the
+/// first by at least the angle whose squared sine is `half_sin2` (half the smallest angle a
+/// triangle may have). If none does, no two of them make that smallest angle at c, and no
+/// triangle with c as its farthest vertex is well-shaped.
+bool seen_apart(const Eigen::Matrix2Xd& P, const std::vector<PointIndex2D::Neighbour>& near,
+                std::size_t count, const Eigen::Vector2d& c, double half_sin2) {
+  const Eigen::Vector2d u = Eigen::Vector2d(P.col(near[0].index)) - c;
+  const double uu = u.squaredNorm();
+  for (std::size_t i = 1; i < count; ++i) {
+    const Eigen::Vector2d v = Eigen::Vector2d(P.col(near[i].index)) - c;
+    const double cross = u.x() * v.y() - u.y() * v.x();
+    if (cross * cross >= half_sin2 * uu * v.squaredNorm())
+      return true;
+  }
+  return false;
+}
+
+/// The directions from a point to others, as the narrowest arc holding them all. Until it spans
+/// half a turn, the others lie on one side of a line through the point, and no triangle of them
+/// holds it.
+class DirectionArc {
+ public:
+  explicit DirectionArc(const Eigen::Vector2d& centre) : centre_(centre) {}
+
+  void add(const Eigen::Vector2d& q) {
+    if (surrounded_)
+      return;
+    const Eigen::Vector2d d = q - centre_;
+    if (d.x() == 0.0 && d.y() == 0.0) {
+      surrounded_ = true;  // a vertex at the point: a triangle of it holds the point
+      return;
+    }
+    constexpr double kTurn = 2.0 * std::numbers::pi;
+    const double theta = std::atan2(d.y(), d.x());
+    if (empty_) {
+      start_ = theta;
+      empty_ = false;
+      return;
+    }
+    const double ahead = theta - start_ - kTurn * std::floor((theta - start_) / kTurn);
+    if (ahead <= width_)
+      return;
+    const double widened_ahead = ahead, widened_behind = width_ + kTurn - ahead;
+    // Half a turn less a hair: a point on a triangle's edge counts as held, whatever rounding.
+    if (std::min(widened_ahead, widened_behind) >= std::numbers::pi - 1e-9) {
+      surrounded_ = true;
+    } else if (widened_ahead <= widened_behind) {
+      width_ = widened_ahead;
+    } else {
+      start_ = theta;
+      width_ = widened_behind;
+    }
+  }
+
+  /// Whether the directions span half a turn (the point may lie in a triangle of the others).
+  bool surrounded() const { return surrounded_; }
+
+ private:
+  Eigen::Vector2d centre_;
+  double start_ = 0.0;  ///< radians, where the arc starts; it runs counterclockwise
+  double width_ = 0.0;  ///< radians
+  bool empty_ = true;
+  bool surrounded_ = false;
+};
 }  // namespace
 
 LinearCombinationMapping::Triangle LinearCombinationMapping::choose(
     const Eigen::Vector2d& p) const {
   const auto& P = pairs_.points_in_plan;
+  // 0.999: rounding never skips a farthest vertex that has a well-shaped triangle.
+  const double half_sin2 =
+      0.999 * std::pow(std::sin(options_.min_angle_deg * std::numbers::pi / 360.0), 2);
   for (std::size_t k = static_cast<std::size_t>(options_.neighbours);; k *= 2) {
     const auto near = plan_index_.nearest_k(p, k);
     // A triangle scores by its farthest vertex (the neighbours come nearest first): grow the
     // farthest vertex l and try every pair of nearer ones, so the first triangle that holds p
-    // is the best one, usually among the first few neighbours.
+    // is the best one, usually among the first few neighbours. Pairs along one straight wall
+    // widen the search to many neighbours, and trying every triangle of them cost their cube
+    // per point: the vertices that cannot make a well-shaped triangle, or one holding p, are
+    // passed over whole.
     Triangle nearest_not_holding;
-    for (std::size_t l = 2; l < near.size(); ++l) {
+    DirectionArc around(p);
+    for (std::size_t l = 0; l < near.size(); ++l) {
       const Eigen::Vector2d c = P.col(near[l].index);
-      for (std::size_t i = 0; i + 1 < l; ++i) {
+      around.add(c);
+      const bool may_hold = around.surrounded();
+      if (l < 2 || (nearest_not_holding.valid() && !may_hold) ||
+          !seen_apart(P, near, l, c, half_sin2))
+        continue;
+      bool next_vertex = false;
+      for (std::size_t i = 0; i + 1 < l && !next_vertex; ++i) {
         const Eigen::Vector2d a = P.col(near[i].index);
-        for (std::size_t j = i + 1; j < l; ++j) {
+        for (std::size_t j = i + 1; j < l && !next_vertex; ++j) {
           const Eigen::Vector2d b = P.col(near[j].index);
           if (!well_shaped(a, b, c, min_sin_angle_))
             continue;
           const Triangle t{near[i].index, near[j].index, near[l].index};
-          Eigen::Matrix2d R;
-          R << b - a, c - a;
-          const Eigen::Vector2d w = R.inverse() * (p - a);
-          if (w.minCoeff() >= 0.0 && w.sum() <= 1.0)
-            return t;
+          if (may_hold) {
+            Eigen::Matrix2d R;
+            R << b - a, c - a;
+            const Eigen::Vector2d w = R.inverse() * (p - a);
+            if (w.minCoeff() >= 0.0 && w.sum() <= 1.0)
+              return t;
+          }
           if (!nearest_not_holding.valid())
             nearest_not_holding = t;
+          next_vertex = !may_hold;  // no other triangle of these vertices holds p either
         }
       }
     }
