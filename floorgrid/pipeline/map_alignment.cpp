@@ -202,10 +202,14 @@ MapAlignment align_maps(const OccupancyGrid& gridmap, const OccupancyGrid& plan,
   }
   const double scale = warp.similarity.scale;
 
-  // The final matches are the pairs: the plan wall surface point, the gridmap wall point.
+  // The final matches of the points on a straight wall are the pairs: the plan wall surface
+  // point, the gridmap wall point. (The bending used every point; lc's search for a triangle
+  // among pairs in straight rows is why it passes over collinear neighbours quickly.)
   std::vector<Eigen::Vector2d> plan_side, grid_side;
   std::vector<double> distances;
   for (const WallPoint& w : points) {
+    if (w.normal.squaredNorm() == 0.0)
+      continue;  // a corner or a blob (clutter) tells no wall it lies on
     const Match m = match_to_plan(field, warp, w, o.pair_radius * scale, step, min_cosine);
     if (!m.found)
       continue;

@@ -90,7 +90,9 @@ struct MapAlignment {
 /// to the nearest plan wall surface within a shrinking radius (rejected when the walls'
 /// directions disagree), and the lattice is refitted to move the points across their walls
 /// onto them (point to plane: along a wall only its ends and corners tell). The final matches
-/// are reference pairs for every mapping model. The registration's alternatives are bent too.
+/// of the points on a straight gridmap wall are reference pairs for every mapping model (a
+/// corner or a clutter blob tells no wall it lies on: with their pairs, fr079's best model
+/// was 0.676 m off, without them 0.643 m). The registration's alternatives are bent too.
 /// Scores the result as the registration does; not accepted below options.min_fitness or
 /// min_on_walls, or at max_ambiguity and above.
 MapAlignment align_maps(const OccupancyGrid& gridmap, const OccupancyGrid& plan,
