@@ -6,6 +6,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "floorgrid/core/parallel.hpp"
 #include "floorgrid/geometry/pose2.hpp"
 #include "floorgrid/maps/distance_field.hpp"
 
@@ -162,8 +163,12 @@ std::vector<CorrelationCandidate> correlation_candidates(const CorrelationInputs
     pad_x = std::max(pad_x, g.walls.cols / 2 + 1);
     pad_y = std::max(pad_y, g.walls.rows / 2 + 1);
   }
-  for (int i = 0; i < scales; ++i) {
-    const double scale = std::min(in.max_scale, in.min_scale * std::exp(i * o.scale_step));
+  // Each scale on its own thread (2), its candidates in its own list: joined in scale order,
+  // the candidates are the same in the same order whatever the threads.
+  std::vector<std::vector<CorrelationCandidate>> per_scale(static_cast<std::size_t>(scales));
+  parallel_tasks(per_scale.size(), kDefaultThreads, [&](std::size_t i) {
+    const double scale =
+        std::min(in.max_scale, in.min_scale * std::exp(static_cast<double>(i) * o.scale_step));
     const ScaledPlan plan =
         scale_plan(plan_turned, plan_bounds, scale, pad_x, pad_y, cell, o.closeness);
     for (std::size_t k = 0; k < turned.size(); ++k) {
@@ -190,10 +195,12 @@ std::vector<CorrelationCandidate> correlation_candidates(const CorrelationInputs
             Eigen::Vector2d(plan.x0 + at.x * cell, plan.y0 + at.y * cell) - g.bounds.min();
         c.transform.translation = scale * (rotation_2d(in.plan_angle) * delta);
         c.score = best - free_share(g, plan, at.x, at.y);
-        all.push_back(c);
+        per_scale[i].push_back(c);
       }
     }
-  }
+  });
+  for (const std::vector<CorrelationCandidate>& candidates : per_scale)
+    all.insert(all.end(), candidates.begin(), candidates.end());
   std::sort(all.begin(), all.end(),
             [](const CorrelationCandidate& a, const CorrelationCandidate& b) {
               return a.score > b.score;

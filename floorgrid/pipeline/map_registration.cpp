@@ -7,6 +7,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "floorgrid/core/parallel.hpp"
 #include "floorgrid/core/validation.hpp"
 #include "floorgrid/maps/distance_field.hpp"
 #include "floorgrid/maps/wall_surface_field.hpp"
@@ -311,6 +312,16 @@ ScoredSimilarity refine_in_steps(const MapFitScorer& scorer, const MapSimilarity
   return refine_fine(scorer, refine(scorer, start, 4.0 * sigma, options).transform, sigma, options);
 }
 
+// Each start refined in steps, on 2 threads (the scorer is only read), in the starts' order.
+std::vector<ScoredSimilarity> refine_each(const MapFitScorer& scorer,
+                                          const std::vector<MapSimilarity>& starts,
+                                          const MapRegistrationOptions& options) {
+  std::vector<ScoredSimilarity> refined(starts.size());
+  parallel_tasks(starts.size(), kDefaultThreads,
+                 [&](std::size_t i) { refined[i] = refine_in_steps(scorer, starts[i], options); });
+  return refined;
+}
+
 }  // namespace
 
 void validate(const MapRegistrationOptions& o, const std::string& prefix) {
@@ -359,12 +370,13 @@ MapRegistration register_maps(MapFitScorer& scorer, const MapRegistrationOptions
   const std::vector<Eigen::Vector2d> plan_all = evenly_thinned(scorer.plan_cells(), 40000);
   const Direction grid_dir = dominant_direction(scorer.gridmap(), grid_all);
   const Direction plan_dir = dominant_direction(scorer.plan(), plan_all);
-  std::vector<ScoredSimilarity> refined;
+  std::vector<MapSimilarity> starts;
+  for (const Candidate& c : profile_candidates(grid_all, plan_all, grid_dir, plan_dir, options))
+    starts.push_back(c.transform);
+  std::vector<ScoredSimilarity> refined = refine_each(scorer, starts, options);
   double best_score = -1.0;
-  for (const Candidate& c : profile_candidates(grid_all, plan_all, grid_dir, plan_dir, options)) {
-    refined.push_back(refine_in_steps(scorer, c.transform, options));
-    best_score = std::max(best_score, refined.back().score);
-  }
+  for (const ScoredSimilarity& r : refined)
+    best_score = std::max(best_score, r.score);
   if (best_score < options.correlation_below) {
     result.correlation = true;
     const Turns turns = search_turns(grid_dir, plan_dir);
@@ -372,8 +384,11 @@ MapRegistration register_maps(MapFitScorer& scorer, const MapRegistrationOptions
         scorer.gridmap(),  grid_all,          plan_all,
         turns.grid_angle,  turns.plan_angle,  turns.turns,
         options.min_scale, options.max_scale, options.free_violation_distance};
+    starts.clear();
     for (const CorrelationCandidate& c : correlation_candidates(inputs, options.correlation))
-      refined.push_back(refine_in_steps(scorer, c.transform, options));
+      starts.push_back(c.transform);
+    for (const ScoredSimilarity& r : refine_each(scorer, starts, options))
+      refined.push_back(r);
   }
   result.candidates = refined.size();
   std::sort(refined.begin(), refined.end(),
