@@ -1,0 +1,46 @@
+#pragma once
+
+#include <cstddef>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+#include <string>
+
+#include "floorgrid/geometry/pose2.hpp"
+#include "floorgrid/mapping/point_mapping.hpp"
+
+namespace floorgrid::server {
+
+/// A request the API refuses: the HTTP status (400 bad request, 413 too large) and a message
+/// naming the field.
+class RequestError : public std::runtime_error {
+ public:
+  /// An error answered with `status` and `message`.
+  RequestError(int status, const std::string& message)
+      : std::runtime_error(message), status_(status) {}
+  /// The HTTP status to answer with.
+  int status() const { return status_; }
+
+ private:
+  int status_;
+};
+
+/// How much one request may ask for.
+struct RequestLimits {
+  std::size_t max_points = 1'000'000;  ///< points of one POST /api/map
+};
+
+/// A request body as JSON; RequestError 400 when it is not JSON or not an object.
+nlohmann::json parse_request(const std::string& body);
+
+/// POST /api/map: {"from": "plan"|"grid", "points": [[x, y], [x, y, theta], ...], "model"?}
+/// mapped by `model` (metres, radians): {"from", "to", "model", "points": [{"x", "y", "theta"
+/// (when given), "std_m" (null where the model has none), "nearest_pair_m", "flag",
+/// "extrapolated"}]}; a point that cannot be inverted has null x and y and the flag
+/// not_invertible. RequestError naming the field on anything else.
+nlohmann::json map_points(const nlohmann::json& request, const PointMapping& model,
+                          const RequestLimits& limits = {});
+
+/// POST /api/robot_pose: {"x", "y", "theta"} in the grid frame (metres, radians).
+Pose2 parse_robot_pose(const nlohmann::json& request);
+
+}  // namespace floorgrid::server

@@ -1,0 +1,129 @@
+#include "floorgrid/server/viewer_server.hpp"
+
+#include <httplib.h>
+
+#include <stdexcept>
+#include <utility>
+
+namespace floorgrid::server {
+
+namespace {
+
+void answer_json(httplib::Response& res, const nlohmann::json& body, int status = 200) {
+  res.status = status;
+  res.set_content(body.dump(), "application/json");
+}
+
+void answer_error(httplib::Response& res, int status, const std::string& message) {
+  answer_json(res, {{"error", message}}, status);
+}
+
+/// Runs a handler, answering a RequestError with its status and message.
+template <typename Handler>
+httplib::Server::Handler guarded(Handler handler) {
+  return [handler](const httplib::Request& req, httplib::Response& res) {
+    try {
+      handler(req, res);
+    } catch (const RequestError& e) {
+      answer_error(res, e.status(), e.what());
+    }
+  };
+}
+
+}  // namespace
+
+struct ViewerServer::Impl {
+  Impl(ViewerSession& s, ServerOptions o) : session(s), options(std::move(o)) {}
+  ViewerSession& session;
+  ServerOptions options;
+  httplib::Server http;
+  int port = -1;
+};
+
+ViewerServer::ViewerServer(ViewerSession& session, ServerOptions options)
+    : impl_(std::make_unique<Impl>(session, std::move(options))) {
+  Impl& s = *impl_;
+  s.http.set_payload_max_length(s.options.max_body_bytes);
+  s.http.set_read_timeout(10, 0);
+  s.http.set_write_timeout(10, 0);
+  s.http.set_exception_handler(
+      [](const httplib::Request&, httplib::Response& res, std::exception_ptr error) {
+        std::string message = "internal error";
+        try {
+          std::rethrow_exception(std::move(error));
+        } catch (const std::exception& e) {
+          message += std::string(": ") + e.what();
+        } catch (...) {
+        }
+        answer_error(res, 500, message);
+      });
+  s.http.set_error_handler([](const httplib::Request& req, httplib::Response& res) {
+    if (!res.body.empty())
+      return;  // a handler's own answer
+    const std::string message = res.status == 413   ? "the request body is too large"
+                                : res.status == 404 ? "no such path: " + req.path
+                                                    : "bad request";
+    answer_error(res, res.status, message);
+  });
+
+  const RequestLimits limits = s.options.limits;
+  s.http.Get("/api/info", guarded([&session](const httplib::Request&, httplib::Response& res) {
+               answer_json(res, {{"dataset", session.dataset()},
+                                 {"model", session.model()->name()},
+                                 {"robot_pose_sequence", session.robot_pose().sequence}});
+             }));
+  s.http.Post("/api/map",
+              guarded([&session, limits](const httplib::Request& req, httplib::Response& res) {
+                const nlohmann::json request = parse_request(req.body);
+                const std::shared_ptr<const PointMapping> model = session.model();
+                answer_json(res, map_points(request, *model, limits));
+              }));
+  s.http.Get("/api/robot_pose",
+             guarded([&session](const httplib::Request&, httplib::Response& res) {
+               const RobotPose r = session.robot_pose();
+               nlohmann::json body{{"sequence", r.sequence}};
+               if (r.sequence > 0) {
+                 body["x"] = r.pose_in_grid.x;
+                 body["y"] = r.pose_in_grid.y;
+                 body["theta"] = r.pose_in_grid.theta;
+               }
+               answer_json(res, body);
+             }));
+  s.http.Post("/api/robot_pose",
+              guarded([&session](const httplib::Request& req, httplib::Response& res) {
+                const Pose2 pose = parse_robot_pose(parse_request(req.body));
+                answer_json(res, {{"sequence", session.post_robot_pose(pose)}});
+              }));
+  if (!s.options.web_root.empty() && !s.http.set_mount_point("/", s.options.web_root.string())) {
+    throw std::runtime_error("the web root " + s.options.web_root.string() + " is not a folder");
+  }
+}
+
+ViewerServer::~ViewerServer() {
+  stop();
+}
+
+int ViewerServer::bind() {
+  Impl& s = *impl_;
+  if (s.options.port == 0) {
+    s.port = s.http.bind_to_any_port(s.options.host);
+  } else {
+    s.port = s.http.bind_to_port(s.options.host, s.options.port) ? s.options.port : -1;
+  }
+  if (s.port < 0) {
+    throw std::runtime_error("cannot listen on " + s.options.host + ":" +
+                             std::to_string(s.options.port));
+  }
+  return s.port;
+}
+
+void ViewerServer::listen() {
+  impl_->http.listen_after_bind();
+}
+
+void ViewerServer::stop() {
+  if (impl_ && impl_->http.is_running())
+    impl_->http.stop();
+}
+
+}  // namespace floorgrid::server

@@ -1,0 +1,50 @@
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include "floorgrid/server/map_request.hpp"
+#include "floorgrid/server/viewer_session.hpp"
+
+namespace floorgrid::server {
+
+/// Where and how the viewer's server listens.
+struct ServerOptions {
+  std::string host = "127.0.0.1";         ///< loopback unless told otherwise
+  int port = 8080;                        ///< 0: any free port (bind() says which)
+  std::filesystem::path web_root;         ///< static files served at /, none when empty
+  std::size_t max_body_bytes = 8u << 20;  ///< larger request bodies get 413
+  RequestLimits limits;                   ///< what one request may ask for
+};
+
+/// The viewer's HTTP server (cpp-httplib): the JSON API over a ViewerSession and the static
+/// files of the web root (nothing outside it). Every bad request gets a 4xx status and
+/// {"error": message naming the field}.
+///   GET  /api/info         {"dataset", "model", "robot_pose_sequence"}
+///   POST /api/map          see map_points
+///   GET  /api/robot_pose   {"sequence", "x", "y", "theta"} (sequence 0: none yet)
+///   POST /api/robot_pose   {"x", "y", "theta"} in the grid frame -> {"sequence"}
+class ViewerServer {
+ public:
+  /// A server over `session` (which must outlive it).
+  ViewerServer(ViewerSession& session, ServerOptions options);
+  ~ViewerServer();
+  ViewerServer(const ViewerServer&) = delete;
+  ViewerServer& operator=(const ViewerServer&) = delete;
+
+  /// Binds to options.host and options.port; returns the port bound. std::runtime_error when
+  /// the address cannot be bound.
+  int bind();
+  /// Answers requests until stop() (call after bind(), on its own thread if need be).
+  void listen();
+  /// Stops listen() (from any thread).
+  void stop();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace floorgrid::server

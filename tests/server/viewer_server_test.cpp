@@ -1,0 +1,259 @@
+// The viewer's HTTP API, through cpp-httplib's client on loopback: points mapped as the model
+// maps them (a known similarity), the robot pose fed back, every bad request answered with a
+// 4xx and a message naming the field, static files only from the web root, and requests safe
+// while a refit swaps the model.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <random>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "floorgrid/mapping/mapping_factory.hpp"
+#include "floorgrid/server/viewer_server.hpp"
+
+// Last: httplib.h brings <resolv.h>, whose `_res` macro breaks Eigen's headers after it.
+#include <httplib.h>  // NOLINT(llvm-include-order)
+
+namespace floorgrid::server {
+namespace {
+
+/// The grid point of a plan point under the similarity: scale s, turned by theta, shifted.
+struct Similarity {
+  double s, theta, tx, ty;
+  Eigen::Vector2d operator()(const Eigen::Vector2d& p) const {
+    return s * Eigen::Rotation2Dd(theta).toRotationMatrix() * p + Eigen::Vector2d(tx, ty);
+  }
+};
+
+/// A gt model fitted to exact pairs of `truth` on a 10 m square.
+std::shared_ptr<const PointMapping> model_of(const Similarity& truth) {
+  ReferencePairs pairs;
+  pairs.points_in_plan.resize(2, 25);
+  pairs.points_in_grid.resize(2, 25);
+  for (int i = 0; i < 25; ++i) {
+    const Eigen::Vector2d p(2.5 * (i % 5), 2.5 * (i / 5));
+    pairs.points_in_plan.col(i) = p;
+    pairs.points_in_grid.col(i) = truth(p);
+  }
+  MappingOptions options;
+  options.model = "gt";
+  std::shared_ptr<PointMapping> model = make_mapping(options);
+  model->fit(pairs);
+  return model;
+}
+
+const Similarity kTruth{1.25, 0.3, 4.0, -2.0};
+const Similarity kOtherTruth{0.8, -0.5, -1.0, 3.0};
+
+class ViewerServerTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    root_ =
+        std::filesystem::temp_directory_path() /
+        ("floorgrid-viewer-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
+         "-" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    std::filesystem::remove_all(root_);
+    std::filesystem::create_directories(root_ / "web");
+    std::ofstream(root_ / "web" / "index.html") << "<!doctype html><title>floorgrid</title>";
+    std::ofstream(root_ / "secret.txt") << "not for the web";
+    ServerOptions options;
+    options.port = 0;
+    options.web_root = root_ / "web";
+    options.limits.max_points = 1000;
+    server_ = std::make_unique<ViewerServer>(session_, options);
+    port_ = server_->bind();
+    thread_ = std::thread([this] { server_->listen(); });
+  }
+
+  void TearDown() override {
+    server_->stop();
+    thread_.join();
+    std::filesystem::remove_all(root_);
+  }
+
+  httplib::Client client() const { return httplib::Client("127.0.0.1", port_); }
+
+  /// POSTs `body` to /api/map; the status and the parsed answer.
+  std::pair<int, nlohmann::json> post_map(const std::string& body) const {
+    httplib::Client c = client();
+    const httplib::Result r = c.Post("/api/map", body, "application/json");
+    if (!r)
+      return {-1, nullptr};
+    return {r->status, nlohmann::json::parse(r->body, nullptr, false)};
+  }
+
+  ViewerSession session_{model_of(kTruth), "square"};
+  std::filesystem::path root_;
+  std::unique_ptr<ViewerServer> server_;
+  std::thread thread_;
+  int port_ = 0;
+};
+
+TEST_F(ViewerServerTest, MapsPointsAndPosesBothWaysAsTheModelDoes) {
+  const auto [status, answer] =
+      post_map(R"({"from": "plan", "points": [[1.0, 2.0], [3.0, 4.0, 0.5]]})");
+  ASSERT_EQ(status, 200) << answer.dump();
+  EXPECT_EQ(answer["to"], "grid");
+  EXPECT_EQ(answer["model"], "gt");
+  ASSERT_EQ(answer["points"].size(), 2u);
+  for (int i = 0; i < 2; ++i) {
+    const Eigen::Vector2d expected = kTruth(i == 0 ? Eigen::Vector2d(1, 2) : Eigen::Vector2d(3, 4));
+    EXPECT_NEAR(answer["points"][i]["x"].get<double>(), expected.x(), 1e-6);
+    EXPECT_NEAR(answer["points"][i]["y"].get<double>(), expected.y(), 1e-6);
+    EXPECT_EQ(answer["points"][i]["flag"], "ok");
+    EXPECT_FALSE(answer["points"][i]["extrapolated"].get<bool>());
+  }
+  EXPECT_FALSE(answer["points"][0].contains("theta"));
+  EXPECT_NEAR(answer["points"][1]["theta"].get<double>(), 0.5 + kTruth.theta, 1e-6);
+
+  // Back from the grid, and a point far beyond every pair flagged.
+  const Eigen::Vector2d g = kTruth(Eigen::Vector2d(5.0, 6.0));
+  const auto [back_status, back] =
+      post_map(R"({"from": "grid", "points": [[)" + std::to_string(g.x()) + "," +
+               std::to_string(g.y()) + R"(], [500, 500]]})");
+  ASSERT_EQ(back_status, 200) << back.dump();
+  EXPECT_NEAR(back["points"][0]["x"].get<double>(), 5.0, 1e-5);
+  EXPECT_NEAR(back["points"][0]["y"].get<double>(), 6.0, 1e-5);
+  EXPECT_TRUE(back["points"][1]["extrapolated"].get<bool>());
+}
+
+TEST_F(ViewerServerTest, EveryBadRequestGetsAClientErrorNamingTheField) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"{", "not JSON"},
+      {"[1, 2]", "JSON object"},
+      {R"({"points": [[1, 2]]})", "'from'"},
+      {R"({"from": "moon", "points": [[1, 2]]})", "'from'"},
+      {R"({"from": "plan"})", "'points'"},
+      {R"({"from": "plan", "points": {"x": 1}})", "'points'"},
+      {R"({"from": "plan", "points": [[1]]})", "'points[0]'"},
+      {R"({"from": "plan", "points": [[1, 2], [1, "2"]]})", "'points[1]' y"},
+      {R"({"from": "plan", "points": [[1, 2, 3, 4]]})", "'points[0]'"},
+      {R"({"from": "plan", "points": [[NaN, 2]]})", "not JSON"},
+      {R"({"from": "plan", "points": [[1e999, 2]]})", "not JSON"},
+      {R"({"from": "plan", "points": [[1, 2]], "model": "tps"})", "'model'"},
+  };
+  for (const auto& [body, says] : cases) {
+    const auto [status, answer] = post_map(body);
+    EXPECT_EQ(status, 400) << body;
+    ASSERT_TRUE(answer.is_object() && answer.contains("error")) << body;
+    EXPECT_NE(answer["error"].get<std::string>().find(says), std::string::npos)
+        << body << " -> " << answer.dump();
+  }
+  httplib::Client c = client();
+  const httplib::Result pose = c.Post("/api/robot_pose", R"({"x": 1, "y": 2})", "application/json");
+  ASSERT_TRUE(pose);
+  EXPECT_EQ(pose->status, 400);
+  EXPECT_NE(pose->body.find("'theta'"), std::string::npos) << pose->body;
+}
+
+TEST_F(ViewerServerTest, TooManyPointsOrTooLargeABodyGet413) {
+  // Over the points limit (1000 here), in a small body.
+  std::string body = R"({"from": "plan", "points": [)";
+  for (int i = 0; i < 1001; ++i)
+    body += i ? ",[1,2]" : "[1,2]";
+  body += "]}";
+  const auto [status, answer] = post_map(body);
+  EXPECT_EQ(status, 413);
+  EXPECT_NE(answer.dump().find("1001"), std::string::npos) << answer.dump();
+
+  // 10^7 points: the body alone is over the 8 MiB limit and is never parsed.
+  std::string huge = R"({"from": "plan", "points": [)";
+  huge.reserve(60'000'100);
+  for (int i = 0; i < 10'000'000; ++i)
+    huge += i ? ",[1,2]" : "[1,2]";
+  huge += "]}";
+  const auto [huge_status, huge_answer] = post_map(huge);
+  EXPECT_EQ(huge_status, 413) << huge_answer.dump();
+
+  // The server still answers.
+  EXPECT_EQ(post_map(R"({"from": "plan", "points": [[1, 2]]})").first, 200);
+}
+
+TEST_F(ViewerServerTest, StaticFilesComeOnlyFromTheWebRoot) {
+  httplib::Client c = client();
+  const httplib::Result index = c.Get("/index.html");
+  ASSERT_TRUE(index);
+  EXPECT_EQ(index->status, 200);
+  EXPECT_NE(index->body.find("floorgrid"), std::string::npos);
+  for (const char* path : {"/../secret.txt", "/%2e%2e/secret.txt", "/..%2fsecret.txt",
+                           "/web/../../secret.txt", "/nothing-here.js"}) {
+    const httplib::Result r = c.Get(path);
+    ASSERT_TRUE(r) << path;
+    EXPECT_GE(r->status, 400) << path;
+    EXPECT_EQ(r->body.find("not for the web"), std::string::npos) << path;
+  }
+}
+
+TEST_F(ViewerServerTest, ARobotPosePostedIsTheOneServed) {
+  httplib::Client c = client();
+  const httplib::Result none = c.Get("/api/robot_pose");
+  ASSERT_TRUE(none);
+  EXPECT_EQ(nlohmann::json::parse(none->body)["sequence"], 0);
+  const httplib::Result posted =
+      c.Post("/api/robot_pose", R"({"x": 1.5, "y": -2.0, "theta": 0.25})", "application/json");
+  ASSERT_TRUE(posted);
+  ASSERT_EQ(posted->status, 200) << posted->body;
+  EXPECT_EQ(nlohmann::json::parse(posted->body)["sequence"], 1);
+  const nlohmann::json pose = nlohmann::json::parse(c.Get("/api/robot_pose")->body);
+  EXPECT_EQ(pose["sequence"], 1);
+  EXPECT_DOUBLE_EQ(pose["x"].get<double>(), 1.5);
+  EXPECT_DOUBLE_EQ(pose["y"].get<double>(), -2.0);
+  EXPECT_DOUBLE_EQ(pose["theta"].get<double>(), 0.25);
+  EXPECT_EQ(nlohmann::json::parse(c.Get("/api/info")->body)["robot_pose_sequence"], 1);
+}
+
+TEST_F(ViewerServerTest, RequestsWhileARefitSwapsTheModelMapByOneModelEach) {
+  const std::shared_ptr<const PointMapping> models[] = {model_of(kTruth), model_of(kOtherTruth)};
+  std::string body = R"({"from": "plan", "points": [)";
+  std::vector<Eigen::Vector2d> points;
+  for (int i = 0; i < 100; ++i) {
+    points.emplace_back(0.1 * i, 10.0 - 0.1 * i);
+    const nlohmann::json point = {points.back().x(), points.back().y()};
+    body += (i ? "," : "");
+    body += point.dump();
+  }
+  body += "]}";
+  std::atomic<bool> done = false;
+  std::atomic<int> errors = 0, mixed = 0, answered = 0;
+  std::vector<std::thread> clients;
+  for (int t = 0; t < 4; ++t) {
+    clients.emplace_back([&] {
+      for (int k = 0; k < 40; ++k) {
+        const auto [status, answer] = post_map(body);
+        if (status != 200) {
+          ++errors;
+          continue;
+        }
+        // Every point by the same one of the two truths.
+        int by_first = 0, by_second = 0;
+        for (std::size_t i = 0; i < points.size(); ++i) {
+          const Eigen::Vector2d got(answer["points"][i]["x"].get<double>(),
+                                    answer["points"][i]["y"].get<double>());
+          by_first += (got - kTruth(points[i])).norm() < 1e-6;
+          by_second += (got - kOtherTruth(points[i])).norm() < 1e-6;
+        }
+        mixed += !(by_first == 100 || by_second == 100);
+        ++answered;
+      }
+    });
+  }
+  for (int swap = 0; !done; ++swap) {
+    session_.set_model(models[swap % 2]);
+    std::this_thread::sleep_for(std::chrono::microseconds(200));
+    done = answered + errors >= 160;
+  }
+  for (std::thread& t : clients)
+    t.join();
+  EXPECT_EQ(errors, 0);
+  EXPECT_EQ(mixed, 0);
+  EXPECT_EQ(answered, 160);
+}
+
+}  // namespace
+}  // namespace floorgrid::server
