@@ -280,8 +280,15 @@ struct PngWriteGuard {
   ~PngWriteGuard() { png_destroy_write_struct(&png, &info); }
 };
 
+}  // namespace
+
 std::string encode_png(int width, int height, int channels,
                        const std::vector<std::uint8_t>& pixels) {
+  if (width <= 0 || height <= 0 || channels < 1 || channels > 4 ||
+      pixels.size() !=
+          static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * channels) {
+    throw std::invalid_argument("encode_png: the pixels do not match the image's size");
+  }
   std::string out;
   PngWriteState state{&out, {}};
   PngWriteGuard guard;
@@ -312,6 +319,8 @@ std::string encode_png(int width, int height, int channels,
   png_write_end(png, nullptr);
   return out;
 }
+
+namespace {
 
 void check_buffer(const std::filesystem::path& path, int width, int height, int channels,
                   std::size_t size) {

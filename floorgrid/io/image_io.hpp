@@ -40,6 +40,11 @@ GreyImage read_grey_image(const std::filesystem::path& path, const ImageLimits& 
 void write_pgm(const std::filesystem::path& path, int width, int height,
                const std::vector<std::uint8_t>& pixels);
 
+/// An 8-bit PNG file's bytes: `pixels` holds width * height * channels bytes (1 grey, 2 grey +
+/// alpha, 3 RGB, 4 RGBA), top row first. For answers that are not files (the viewer's API).
+std::string encode_png(int width, int height, int channels,
+                       const std::vector<std::uint8_t>& pixels);
+
 /// Writes an 8-bit PNG atomically: grey, or grey+alpha when `alpha` is not empty.
 void write_png(const std::filesystem::path& path, int width, int height,
                const std::vector<std::uint8_t>& grey, const std::vector<std::uint8_t>& alpha = {});

@@ -18,6 +18,19 @@ void answer_error(httplib::Response& res, int status, const std::string& message
   answer_json(res, {{"error", message}}, status);
 }
 
+/// Where a map's picture lies: its pixels, metres per pixel, origin (x, y, yaw) and bounds.
+nlohmann::json map_info(const ViewerMap& map) {
+  if (map.png.empty())
+    return nullptr;
+  const GridGeometry& g = map.geometry;
+  const Eigen::AlignedBox2d box = g.bounds();
+  return {{"width", g.width},
+          {"height", g.height},
+          {"resolution", g.resolution},
+          {"origin", {g.origin.x, g.origin.y, g.origin.theta}},
+          {"bounds", {{box.min().x(), box.min().y()}, {box.max().x(), box.max().y()}}}};
+}
+
 /// Runs a handler, answering a RequestError with its status and message.
 template <typename Handler>
 httplib::Server::Handler guarded(Handler handler) {
@@ -70,8 +83,19 @@ ViewerServer::ViewerServer(ViewerSession& session, ServerOptions options)
   s.http.Get("/api/info", guarded([&session](const httplib::Request&, httplib::Response& res) {
                answer_json(res, {{"dataset", session.dataset()},
                                  {"model", session.model()->name()},
+                                 {"plan", map_info(session.plan())},
+                                 {"grid", map_info(session.grid())},
                                  {"robot_pose_sequence", session.robot_pose().sequence}});
              }));
+  for (const char* which : {"plan", "grid"}) {
+    const ViewerMap& map = std::string(which) == "plan" ? session.plan() : session.grid();
+    s.http.Get(std::string("/api/maps/") + which + ".png", [&map, which](const httplib::Request&,
+                                                                         httplib::Response& res) {
+      if (map.png.empty())
+        return answer_error(res, 404, std::string("this session has no ") + which + " map");
+      res.set_content(map.png, "image/png");
+    });
+  }
   s.http.Post("/api/map",
               guarded([&session, limits](const httplib::Request& req, httplib::Response& res) {
                 const nlohmann::json request = parse_request(req.body);

@@ -3,10 +3,19 @@
 #include <stdexcept>
 #include <utility>
 
+#include "floorgrid/io/image_io.hpp"
+#include "floorgrid/io/map_io.hpp"
+
 namespace floorgrid::server {
 
-ViewerSession::ViewerSession(std::shared_ptr<const PointMapping> model, std::string dataset)
-    : dataset_(std::move(dataset)) {
+ViewerMap viewer_map(const OccupancyGrid& grid) {
+  const std::vector<std::uint8_t> grey = io::grid_to_image(grid, io::MapMetadata{}, nullptr);
+  return {io::encode_png(grid.width(), grid.height(), 1, grey), grid.geometry()};
+}
+
+ViewerSession::ViewerSession(std::shared_ptr<const PointMapping> model, std::string dataset,
+                             ViewerMap plan, ViewerMap grid)
+    : dataset_(std::move(dataset)), plan_(std::move(plan)), grid_(std::move(grid)) {
   set_model(std::move(model));
 }
 

@@ -14,6 +14,7 @@
 #include <thread>
 #include <vector>
 
+#include "floorgrid/io/image_io.hpp"
 #include "floorgrid/mapping/mapping_factory.hpp"
 #include "floorgrid/server/viewer_server.hpp"
 
@@ -46,6 +47,21 @@ std::shared_ptr<const PointMapping> model_of(const Similarity& truth) {
   std::shared_ptr<PointMapping> model = make_mapping(options);
   model->fit(pairs);
   return model;
+}
+
+/// A 40 x 30 cell map at 0.1 m, origin (-1, 2): free, one occupied cell at (3, 5), its top
+/// row unknown.
+OccupancyGrid small_map() {
+  GridGeometry g;
+  g.width = 40;
+  g.height = 30;
+  g.resolution = 0.1;
+  g.origin = Pose2{-1.0, 2.0, 0.0};
+  OccupancyGrid grid(g, CellState::free);
+  grid.set_state(3, 5, CellState::occupied);
+  for (int ix = 0; ix < g.width; ++ix)
+    grid.set_state(ix, g.height - 1, CellState::unknown);
+  return grid;
 }
 
 const Similarity kTruth{1.25, 0.3, 4.0, -2.0};
@@ -88,7 +104,7 @@ class ViewerServerTest : public ::testing::Test {
     return {r->status, nlohmann::json::parse(r->body, nullptr, false)};
   }
 
-  ViewerSession session_{model_of(kTruth), "square"};
+  ViewerSession session_{model_of(kTruth), "square", viewer_map(small_map())};
   std::filesystem::path root_;
   std::unique_ptr<ViewerServer> server_;
   std::thread thread_;
@@ -188,6 +204,38 @@ TEST_F(ViewerServerTest, StaticFilesComeOnlyFromTheWebRoot) {
     EXPECT_GE(r->status, 400) << path;
     EXPECT_EQ(r->body.find("not for the web"), std::string::npos) << path;
   }
+}
+
+TEST_F(ViewerServerTest, MapsComeAsPngsWithTheirPlaceInMetres) {
+  httplib::Client c = client();
+  const nlohmann::json info = nlohmann::json::parse(c.Get("/api/info")->body);
+  EXPECT_EQ(info["dataset"], "square");
+  EXPECT_EQ(info["plan"]["width"], 40);
+  EXPECT_EQ(info["plan"]["height"], 30);
+  EXPECT_DOUBLE_EQ(info["plan"]["resolution"].get<double>(), 0.1);
+  EXPECT_NEAR(info["plan"]["bounds"][0][0].get<double>(), -1.0, 1e-12);
+  EXPECT_NEAR(info["plan"]["bounds"][0][1].get<double>(), 2.0, 1e-12);
+  EXPECT_NEAR(info["plan"]["bounds"][1][0].get<double>(), 3.0, 1e-12);
+  EXPECT_NEAR(info["plan"]["bounds"][1][1].get<double>(), 5.0, 1e-12);
+  EXPECT_TRUE(info["grid"].is_null());  // this session has no gridmap picture
+
+  const httplib::Result png = c.Get("/api/maps/plan.png");
+  ASSERT_TRUE(png);
+  ASSERT_EQ(png->status, 200);
+  EXPECT_EQ(png->get_header_value("Content-Type"), "image/png");
+  const std::filesystem::path file = root_ / "plan.png";
+  std::ofstream(file, std::ios::binary) << png->body;
+  const io::GreyImage image = io::read_grey_image(file);
+  ASSERT_EQ(image.width, 40);
+  ASSERT_EQ(image.height, 30);
+  // Top row first: cell (3, 5) is image row 30 - 1 - 5; the top row is unknown.
+  EXPECT_EQ(image.level[static_cast<std::size_t>(24 * 40 + 3)], 0);
+  EXPECT_EQ(image.level[static_cast<std::size_t>(10 * 40 + 10)], 254);
+  EXPECT_EQ(image.level[5], 205);
+  const httplib::Result none = c.Get("/api/maps/grid.png");
+  ASSERT_TRUE(none);
+  EXPECT_EQ(none->status, 404);
+  EXPECT_NE(none->body.find("no grid map"), std::string::npos) << none->body;
 }
 
 TEST_F(ViewerServerTest, ARobotPosePostedIsTheOneServed) {
