@@ -25,5 +25,7 @@ void add_demo_command(CLI::App& root);
 void add_config_command(CLI::App& root);
 /// `floorgrid export`.
 void add_export_command(CLI::App& root);
+/// `floorgrid serve`.
+void add_serve_command(CLI::App& root);
 
 }  // namespace floorgrid::app
