@@ -98,7 +98,8 @@ void run_align(const std::string& dataset, const std::string& out, const JobOpti
   const std::string name =
       d.manifest.name.empty() ? d.manifest.folder().filename().string() : d.manifest.name;
   const io::AlignmentFiles files =
-      io::write_alignment(a, inputs, name, out, timings, io::floorplan_units_json(d));
+      io::write_alignment(a, inputs, name, out, timings, io::floorplan_units_json(d),
+                          d.manifest.manifest_path);
   fmt::print("\nwrote {} files to {} (metrics.json, model.json, overlays/)\n", files.files.size(),
              files.folder.string());
   // What was learnt is written (metrics.json holds the localization's story), but a run that

@@ -3,7 +3,9 @@
 #include <fmt/format.h>
 
 #include <filesystem>
+#include <fstream>
 #include <memory>
+#include <nlohmann/json.hpp>
 
 #include "apps/floorgrid/commands.hpp"
 #include "floorgrid/core/error.hpp"
@@ -23,6 +25,18 @@ struct ServedFiles {
   fs::path dataset, model;
 };
 
+/// The dataset an align folder's metrics.json records (empty: none recorded).
+fs::path recorded_dataset(const fs::path& folder) {
+  const fs::path metrics = folder / "metrics.json";
+  if (!fs::exists(metrics))
+    return {};
+  std::ifstream in(metrics);
+  const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+  if (j.is_object() && j.contains("dataset_path") && j["dataset_path"].is_string())
+    return j["dataset_path"].get<std::string>();
+  return {};
+}
+
 ServedFiles served_files(const fs::path& target, const std::string& dataset,
                          const std::string& model) {
   if (!fs::exists(target))
@@ -33,10 +47,12 @@ ServedFiles served_files(const fs::path& target, const std::string& dataset,
   if (align_folder) {
     if (files.model.empty())
       files.model = target / "model.json";
+    if (files.dataset.empty())
+      files.dataset = recorded_dataset(target);
     if (files.dataset.empty()) {
       throw InputError(
-          "an align output folder: give the dataset it aligned with --dataset (the maps "
-          "the viewer shows)",
+          "an align output folder whose metrics.json names no dataset_path: give the dataset "
+          "it aligned with --dataset (the maps the viewer shows)",
           target.string(), 0, "--dataset");
     }
   } else {

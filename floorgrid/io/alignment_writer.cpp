@@ -228,7 +228,8 @@ json metrics_json(const Alignment& a, const std::string& dataset, const Alignmen
 
 AlignmentFiles write_alignment(const Alignment& a, const AlignmentInputs& in,
                                const std::string& dataset, const std::filesystem::path& folder,
-                               AlignmentTimings& timings, const json& floorplan_units) {
+                               AlignmentTimings& timings, const json& floorplan_units,
+                               const std::filesystem::path& dataset_path) {
   const auto start = std::chrono::steady_clock::now();
   prepare_output_folder(folder);
   prepare_output_folder(folder / "overlays");
@@ -285,6 +286,8 @@ AlignmentFiles write_alignment(const Alignment& a, const AlignmentInputs& in,
   timings.write = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() -
                   timings.heat_maps;
   json metrics = metrics_json(a, dataset, timings, floorplan_units);
+  if (!dataset_path.empty())
+    metrics["dataset_path"] = std::filesystem::absolute(dataset_path).lexically_normal().string();
   for (const auto& [name, heat] : heat_maps)
     metrics["models"][name]["heat_map"] = heat;
   write_file_atomically(folder / "metrics.json", metrics.dump(1) + "\n");

@@ -46,10 +46,12 @@ struct AlignmentFiles {
 /// overlays/overlay-<name>.png (the plan's walls through each model, red, and through the truth
 /// when known, green, on the gridmap), overlays/pairs.png (the pairs' gridmap endpoints, blue, on
 /// the gridmap), heatmaps/heat-<name>.png and heatmaps/std-<name>.png (write_model_heat_maps)
-/// and metrics.json last. `timings.write` is filled in.
+/// and metrics.json last (with `dataset_path`, the manifest's absolute path, when given: what
+/// `serve` shows the folder's model on). `timings.write` is filled in.
 AlignmentFiles write_alignment(const Alignment& alignment, const AlignmentInputs& inputs,
                                const std::string& dataset, const std::filesystem::path& folder,
                                AlignmentTimings& timings,
-                               const nlohmann::json& floorplan_units = nullptr);
+                               const nlohmann::json& floorplan_units = nullptr,
+                               const std::filesystem::path& dataset_path = {});
 
 }  // namespace floorgrid::io

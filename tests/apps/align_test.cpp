@@ -48,6 +48,10 @@ TEST(AlignCommand, OfficeGivesAccuratePairsAndModelsAndEveryContractKey) {
     EXPECT_TRUE(m["pairs"].contains(key)) << key;
   EXPECT_EQ(m["domain"]["kind"], "warp");
   EXPECT_GT(m["domain"]["points"].get<int>(), 1000);
+  // Which dataset was aligned (what `serve` of the folder shows).
+  EXPECT_TRUE(std::filesystem::equivalent(m["dataset_path"].get<std::string>(),
+                                          dir / "data" / "dataset.yaml"))
+      << m["dataset_path"];
   for (const char* key : {"load", "global_localization", "scale_search", "localize", "pairs", "fit",
                           "evaluate", "write"}) {
     EXPECT_TRUE(m["timings_s"].contains(key)) << key;
