@@ -11,6 +11,7 @@
 #include "floorgrid/core/error.hpp"
 #include "floorgrid/io/dataset_loader.hpp"
 #include "floorgrid/io/model_io.hpp"
+#include "floorgrid/io/pairs_csv.hpp"
 #include "floorgrid/server/viewer_server.hpp"
 
 namespace floorgrid::app {
@@ -22,7 +23,7 @@ namespace fs = std::filesystem;
 /// The dataset and model files a `serve` argument names: an align output folder (its
 /// model.json, the dataset given by --dataset) or a dataset (the model given by --model).
 struct ServedFiles {
-  fs::path dataset, model;
+  fs::path dataset, model, pairs;  ///< pairs: the align folder's pairs.csv (empty: none)
 };
 
 /// The dataset an align folder's metrics.json records (empty: none recorded).
@@ -41,12 +42,14 @@ ServedFiles served_files(const fs::path& target, const std::string& dataset,
                          const std::string& model) {
   if (!fs::exists(target))
     throw InputError("no such file or folder", target.string(), 0, "DIR-or-DATASET");
-  ServedFiles files{dataset, model};
+  ServedFiles files{dataset, model, {}};
   const bool align_folder = fs::is_directory(target) && fs::exists(target / "model.json") &&
                             !fs::exists(target / "dataset.yaml");
   if (align_folder) {
     if (files.model.empty())
       files.model = target / "model.json";
+    if (fs::exists(target / "pairs.csv"))
+      files.pairs = target / "pairs.csv";
     if (files.dataset.empty())
       files.dataset = recorded_dataset(target);
     if (files.dataset.empty()) {
@@ -99,6 +102,8 @@ void add_serve_command(CLI::App& root) {
         d.manifest.name.empty() ? d.manifest.folder().filename().string() : d.manifest.name;
     server::ViewerSession session(std::move(model), name, server::viewer_map(d.plan_grid),
                                   server::viewer_map(d.gridmap));
+    if (!files.pairs.empty())
+      session.set_base_pairs(io::read_pairs_csv(files.pairs));
     server::ServerOptions options;
     options.host = args->host;
     options.port = args->port;

@@ -1,5 +1,8 @@
 #include "floorgrid/server/map_request.hpp"
 
+#include "floorgrid/mapping/mapping_factory.hpp"
+
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <vector>
@@ -117,6 +120,30 @@ nlohmann::json map_points(const nlohmann::json& request, const PointMapping& mod
           {"to", forward ? "grid" : "plan"},
           {"model", model.name()},
           {"points", std::move(mapped)}};
+}
+
+PairRequest parse_pair(const nlohmann::json& request) {
+  const auto point = [&](const char* name) {
+    const nlohmann::json& p = field(request, name);
+    const std::string where = std::string("'") + name + "'";
+    if (!p.is_array() || p.size() != 2)
+      throw bad(where + " must be [x, y]");
+    return Eigen::Vector2d(finite_number(p[0], where + " x"), finite_number(p[1], where + " y"));
+  };
+  return {point("plan"), point("grid")};
+}
+
+std::string parse_fit_model(const nlohmann::json& request) {
+  const nlohmann::json& model = field(request, "model");
+  const std::vector<std::string> names = mapping_model_names();
+  if (!model.is_string() ||
+      std::find(names.begin(), names.end(), model.get<std::string>()) == names.end()) {
+    std::string known;
+    for (const std::string& n : names)
+      known += (known.empty() ? "" : ", ") + n;
+    throw bad("'model' must be one of " + known + " (got " + model.dump() + ")");
+  }
+  return model.get<std::string>();
 }
 
 Pose2 parse_robot_pose(const nlohmann::json& request) {

@@ -43,4 +43,15 @@ nlohmann::json map_points(const nlohmann::json& request, const PointMapping& mod
 /// POST /api/robot_pose: {"x", "y", "theta"} in the grid frame (metres, radians).
 Pose2 parse_robot_pose(const nlohmann::json& request);
 
+/// POST /api/pairs: {"plan": [x, y], "grid": [x, y]} (metres).
+struct PairRequest {
+  Eigen::Vector2d point_in_plan = Eigen::Vector2d::Zero();
+  Eigen::Vector2d point_in_grid = Eigen::Vector2d::Zero();
+};
+/// The pair a POST /api/pairs adds; RequestError naming the field.
+PairRequest parse_pair(const nlohmann::json& request);
+
+/// POST /api/fit: {"model": one of mapping_model_names()}; RequestError naming the field.
+std::string parse_fit_model(const nlohmann::json& request);
+
 }  // namespace floorgrid::server

@@ -3,7 +3,9 @@
 #include <httplib.h>
 
 #include <stdexcept>
+
 #include <utility>
+#include "floorgrid/core/error.hpp"
 
 namespace floorgrid::server {
 
@@ -39,6 +41,8 @@ httplib::Server::Handler guarded(Handler handler) {
       handler(req, res);
     } catch (const RequestError& e) {
       answer_error(res, e.status(), e.what());
+    } catch (const InputError& e) {
+      answer_error(res, 400, e.what());  // the library's word on the request's data
     }
   };
 }
@@ -118,6 +122,36 @@ ViewerServer::ViewerServer(ViewerSession& session, ServerOptions options)
                 const Pose2 pose = parse_robot_pose(parse_request(req.body));
                 answer_json(res, {{"sequence", session.post_robot_pose(pose)}});
               }));
+  s.http.Get("/api/pairs", guarded([&session](const httplib::Request&, httplib::Response& res) {
+               nlohmann::json pairs = nlohmann::json::array();
+               for (const ManualPair& p : session.manual_pairs()) {
+                 pairs.push_back({{"id", p.id},
+                                  {"plan", {p.point_in_plan.x(), p.point_in_plan.y()}},
+                                  {"grid", {p.point_in_grid.x(), p.point_in_grid.y()}}});
+               }
+               answer_json(res, {{"pairs", pairs}, {"base_pairs", session.base_pairs().size()}});
+             }));
+  s.http.Post("/api/pairs",
+              guarded([&session](const httplib::Request& req, httplib::Response& res) {
+                const PairRequest p = parse_pair(parse_request(req.body));
+                answer_json(res, {{"id", session.add_pair(p.point_in_plan, p.point_in_grid)}}, 201);
+              }));
+  s.http.Delete(R"(/api/pairs/(\d{1,18}))",
+                guarded([&session](const httplib::Request& req, httplib::Response& res) {
+                  const std::uint64_t id = std::stoull(req.matches[1].str());
+                  if (!session.delete_pair(id))
+                    throw RequestError(404, "no manual pair " + std::to_string(id));
+                  answer_json(res, {{"deleted", id}});
+                }));
+  s.http.Post(
+      "/api/fit", guarded([&session](const httplib::Request& req, httplib::Response& res) {
+        MappingOptions fit;
+        fit.model = parse_fit_model(parse_request(req.body));
+        const RefitSummary r = session.refit(fit);
+        answer_json(
+            res,
+            {{"model", r.model}, {"pairs", r.pairs}, {"rms_m", r.rms_m}, {"seconds", r.seconds}});
+      }));
   if (!s.options.web_root.empty() && !s.http.set_mount_point("/", s.options.web_root.string())) {
     throw std::runtime_error("the web root " + s.options.web_root.string() + " is not a folder");
   }

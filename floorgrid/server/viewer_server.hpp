@@ -26,6 +26,11 @@ struct ServerOptions {
 ///   POST /api/map          see map_points
 ///   GET  /api/robot_pose   {"sequence", "x", "y", "theta"} (sequence 0: none yet)
 ///   POST /api/robot_pose   {"x", "y", "theta"} in the grid frame -> {"sequence"}
+///   GET  /api/pairs        {"pairs": [{"id", "plan", "grid"}], "base_pairs"}: the manual ones
+///   POST /api/pairs        {"plan": [x, y], "grid": [x, y]} -> 201 {"id"}
+///   DELETE /api/pairs/ID   {"deleted"}, 404 when there is no such pair
+///   POST /api/fit          {"model"} -> {"model", "pairs", "rms_m", "seconds"}: fitted to the
+///                          alignment's and the manual pairs, then swapped in
 class ViewerServer {
  public:
   /// A server over `session` (which must outlive it).

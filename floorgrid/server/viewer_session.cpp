@@ -1,5 +1,7 @@
 #include "floorgrid/server/viewer_session.hpp"
 
+#include <algorithm>
+#include <chrono>
 #include <stdexcept>
 #include <utility>
 
@@ -40,6 +42,54 @@ std::uint64_t ViewerSession::post_robot_pose(const Pose2& pose_in_grid) {
   const std::lock_guard lock(mutex_);
   robot_.pose_in_grid = pose_in_grid;
   return ++robot_.sequence;
+}
+
+std::vector<ManualPair> ViewerSession::manual_pairs() const {
+  const std::lock_guard lock(mutex_);
+  return manual_;
+}
+
+std::uint64_t ViewerSession::add_pair(const Eigen::Vector2d& point_in_plan,
+                                      const Eigen::Vector2d& point_in_grid) {
+  const std::lock_guard lock(mutex_);
+  manual_.push_back({next_pair_id_, point_in_plan, point_in_grid});
+  return next_pair_id_++;
+}
+
+bool ViewerSession::delete_pair(std::uint64_t id) {
+  const std::lock_guard lock(mutex_);
+  const auto it = std::find_if(manual_.begin(), manual_.end(),
+                               [id](const ManualPair& p) { return p.id == id; });
+  if (it == manual_.end())
+    return false;
+  manual_.erase(it);
+  return true;
+}
+
+RefitSummary ViewerSession::refit(const MappingOptions& options) {
+  const std::lock_guard refitting(refit_mutex_);
+  const std::vector<ManualPair> manual = manual_pairs();
+  ReferencePairs pairs;
+  const Eigen::Index base = base_pairs_.size();
+  const auto n = base + static_cast<Eigen::Index>(manual.size());
+  pairs.points_in_plan.resize(2, n);
+  pairs.points_in_grid.resize(2, n);
+  if (base > 0) {
+    pairs.points_in_plan.leftCols(base) = base_pairs_.points_in_plan;
+    pairs.points_in_grid.leftCols(base) = base_pairs_.points_in_grid;
+  }
+  for (std::size_t i = 0; i < manual.size(); ++i) {
+    pairs.points_in_plan.col(base + static_cast<Eigen::Index>(i)) = manual[i].point_in_plan;
+    pairs.points_in_grid.col(base + static_cast<Eigen::Index>(i)) = manual[i].point_in_grid;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  std::shared_ptr<PointMapping> model = make_mapping(options);
+  model->fit(pairs);
+  RefitSummary summary{
+      model->name(), static_cast<std::size_t>(n), model->summary().rms_m,
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()};
+  set_model(std::move(model));
+  return summary;
 }
 
 }  // namespace floorgrid::server

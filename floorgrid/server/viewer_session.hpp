@@ -5,8 +5,11 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "floorgrid/geometry/pose2.hpp"
+#include "floorgrid/geometry/reference_pairs.hpp"
+#include "floorgrid/mapping/mapping_factory.hpp"
 #include "floorgrid/mapping/point_mapping.hpp"
 #include "floorgrid/maps/occupancy_grid.hpp"
 
@@ -29,6 +32,21 @@ struct ViewerMap {
 /// A map's picture for the viewer.
 ViewerMap viewer_map(const OccupancyGrid& grid);
 
+/// A pair the operator added by hand (metres), with its number.
+struct ManualPair {
+  std::uint64_t id = 0;
+  Eigen::Vector2d point_in_plan = Eigen::Vector2d::Zero();
+  Eigen::Vector2d point_in_grid = Eigen::Vector2d::Zero();
+};
+
+/// What a refit did.
+struct RefitSummary {
+  std::string model;      ///< the model fitted
+  std::size_t pairs = 0;  ///< pairs it was fitted to (the alignment's and the manual ones)
+  double rms_m = 0.0;     ///< its rms residual at them
+  double seconds = 0.0;   ///< how long the fit took
+};
+
 /// What the viewer's API serves, shared by every request thread: the mapping (swapped whole by a
 /// refit, so that a request maps every one of its points with one model) and the robot's pose.
 class ViewerSession {
@@ -48,6 +66,22 @@ class ViewerSession {
   /// Posts a robot pose in the grid frame; returns its sequence number.
   std::uint64_t post_robot_pose(const Pose2& pose_in_grid);
 
+  /// The alignment's pairs the session started from (never edited).
+  const ReferencePairs& base_pairs() const { return base_pairs_; }
+  /// Sets the alignment's pairs (before serving).
+  void set_base_pairs(ReferencePairs pairs) { base_pairs_ = std::move(pairs); }
+  /// The manual pairs, in the order they were added.
+  std::vector<ManualPair> manual_pairs() const;
+  /// Adds a manual pair; returns its number.
+  std::uint64_t add_pair(const Eigen::Vector2d& point_in_plan,
+                         const Eigen::Vector2d& point_in_grid);
+  /// Deletes manual pair `id`; false when there is none.
+  bool delete_pair(std::uint64_t id);
+  /// Fits `options.model` to the alignment's and the manual pairs and swaps it in when the fit
+  /// succeeds (one refit at a time; requests meanwhile map with the model before). InputError
+  /// from the fit (too few pairs, an unknown model) leaves the model as it was.
+  RefitSummary refit(const MappingOptions& options);
+
   /// What the session came from (the dataset's name).
   const std::string& dataset() const { return dataset_; }
   /// The plan's picture (empty png: none).
@@ -57,6 +91,10 @@ class ViewerSession {
 
  private:
   mutable std::mutex mutex_;
+  std::mutex refit_mutex_;  ///< one refit at a time
+  ReferencePairs base_pairs_;
+  std::vector<ManualPair> manual_;
+  std::uint64_t next_pair_id_ = 1;
   std::shared_ptr<const PointMapping> model_;
   RobotPose robot_;
   std::string dataset_;

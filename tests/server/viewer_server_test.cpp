@@ -12,6 +12,7 @@
 #include <random>
 #include <string>
 #include <thread>
+#include <tuple>
 #include <vector>
 
 #include "floorgrid/io/image_io.hpp"
@@ -236,6 +237,60 @@ TEST_F(ViewerServerTest, MapsComeAsPngsWithTheirPlaceInMetres) {
   ASSERT_TRUE(none);
   EXPECT_EQ(none->status, 404);
   EXPECT_NE(none->body.find("no grid map"), std::string::npos) << none->body;
+}
+
+TEST_F(ViewerServerTest, ManualPairsAddedAndDeletedThenARefitMapsByThem) {
+  httplib::Client c = client();
+  // Four pairs of the other similarity, one more that is deleted again.
+  std::vector<std::uint64_t> ids;
+  for (const Eigen::Vector2d& p :
+       {Eigen::Vector2d(0, 0), Eigen::Vector2d(8, 0), Eigen::Vector2d(0, 6), Eigen::Vector2d(8, 6),
+        Eigen::Vector2d(4, 3)}) {
+    const Eigen::Vector2d g = ids.size() == 4 ? Eigen::Vector2d(99, 99) : kOtherTruth(p);
+    const nlohmann::json pair = {{"plan", {p.x(), p.y()}}, {"grid", {g.x(), g.y()}}};
+    const httplib::Result r = c.Post("/api/pairs", pair.dump(), "application/json");
+    ASSERT_TRUE(r);
+    ASSERT_EQ(r->status, 201) << r->body;
+    ids.push_back(nlohmann::json::parse(r->body)["id"].get<std::uint64_t>());
+  }
+  const std::string last = "/api/pairs/" + std::to_string(ids.back());
+  ASSERT_EQ(c.Delete(last.c_str())->status, 200);
+  EXPECT_EQ(c.Delete(last.c_str())->status, 404);  // gone already
+  const nlohmann::json listed = nlohmann::json::parse(c.Get("/api/pairs")->body);
+  ASSERT_EQ(listed["pairs"].size(), 4u);
+  EXPECT_EQ(listed["pairs"][1]["plan"][0], 8.0);
+
+  const httplib::Result fit = c.Post("/api/fit", R"({"model": "gt"})", "application/json");
+  ASSERT_TRUE(fit);
+  ASSERT_EQ(fit->status, 200) << fit->body;
+  EXPECT_EQ(nlohmann::json::parse(fit->body)["pairs"], 4);
+  const auto [status, answer] = post_map(R"({"from": "plan", "points": [[2.0, 5.0]]})");
+  ASSERT_EQ(status, 200);
+  const Eigen::Vector2d expected = kOtherTruth(Eigen::Vector2d(2, 5));
+  EXPECT_NEAR(answer["points"][0]["x"].get<double>(), expected.x(), 1e-6);
+  EXPECT_NEAR(answer["points"][0]["y"].get<double>(), expected.y(), 1e-6);
+
+  // Bad pairs and fits: a 400 naming the field, the model left as it was.
+  for (const auto& [path, body, says] :
+       std::vector<std::tuple<std::string, std::string, std::string>>{
+           {"/api/pairs", R"({"plan": [1, 2]})", "'grid'"},
+           {"/api/pairs", R"({"plan": [1], "grid": [1, 2]})", "'plan'"},
+           {"/api/pairs", R"({"plan": [1, 2], "grid": [1, null]})", "'grid' y"},
+           {"/api/fit", R"({"model": "magic"})", "'model'"},
+           {"/api/fit", R"({})", "'model'"}}) {
+    const httplib::Result r = c.Post(path.c_str(), body, "application/json");
+    ASSERT_TRUE(r) << body;
+    EXPECT_EQ(r->status, 400) << body;
+    EXPECT_NE(r->body.find(says), std::string::npos) << body << " -> " << r->body;
+  }
+  EXPECT_EQ(c.Delete("/api/pairs/abc")->status, 404);
+  for (const std::uint64_t id : {ids[0], ids[1], ids[2]})
+    c.Delete(("/api/pairs/" + std::to_string(id)).c_str());
+  const httplib::Result too_few = c.Post("/api/fit", R"({"model": "gt"})", "application/json");
+  ASSERT_TRUE(too_few);
+  EXPECT_EQ(too_few->status, 400) << too_few->body;
+  EXPECT_EQ(post_map(R"({"from": "plan", "points": [[2.0, 5.0]]})").second["points"][0]["x"],
+            answer["points"][0]["x"]);
 }
 
 TEST_F(ViewerServerTest, ARobotPosePostedIsTheOneServed) {
