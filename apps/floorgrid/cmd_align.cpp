@@ -95,11 +95,9 @@ void run_align(const std::string& dataset, const std::string& out, const JobOpti
         100.0 * a.plan_match.score.in_free_space);
   }
   print_models(a);
-  const std::string name =
-      d.manifest.name.empty() ? d.manifest.folder().filename().string() : d.manifest.name;
-  const io::AlignmentFiles files =
-      io::write_alignment(a, inputs, name, out, timings, io::floorplan_units_json(d),
-                          d.manifest.manifest_path);
+  const std::string name = d.manifest.display_name();
+  const io::AlignmentFiles files = io::write_alignment(
+      a, inputs, name, out, timings, io::floorplan_units_json(d), d.manifest.manifest_path);
   fmt::print("\nwrote {} files to {} (metrics.json, model.json, overlays/)\n", files.files.size(),
              files.folder.string());
   // What was learnt is written (metrics.json holds the localization's story), but a run that

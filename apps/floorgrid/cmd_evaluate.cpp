@@ -86,8 +86,7 @@ void run_evaluate(const std::string& dataset, const std::string& model_file, con
   j["format"] = "floorgrid-metrics";
   j["version"] = 1;
   j["verb"] = "evaluate";
-  j["dataset"] =
-      d.manifest.name.empty() ? d.manifest.folder().filename().string() : d.manifest.name;
+  j["dataset"] = d.manifest.display_name();
   j["model_file"] = model_file;
   j["truth"] = truth.kind;
   j["domain"] = {{"kind", domain.kind}, {"points", domain.points_in_plan.cols()}};

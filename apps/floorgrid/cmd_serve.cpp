@@ -3,12 +3,12 @@
 #include <fmt/format.h>
 
 #include <filesystem>
-#include <fstream>
 #include <memory>
 #include <nlohmann/json.hpp>
 
 #include "apps/floorgrid/commands.hpp"
 #include "floorgrid/core/error.hpp"
+#include "floorgrid/io/atomic_file.hpp"
 #include "floorgrid/io/dataset_loader.hpp"
 #include "floorgrid/io/model_io.hpp"
 #include "floorgrid/io/pairs_csv.hpp"
@@ -31,11 +31,11 @@ fs::path recorded_dataset(const fs::path& folder) {
   const fs::path metrics = folder / "metrics.json";
   if (!fs::exists(metrics))
     return {};
-  std::ifstream in(metrics);
-  const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
-  if (j.is_object() && j.contains("dataset_path") && j["dataset_path"].is_string())
-    return j["dataset_path"].get<std::string>();
-  return {};
+  const nlohmann::json j = nlohmann::json::parse(io::read_whole_file(metrics), nullptr, false);
+  if (!j.is_object())
+    throw InputError("not a JSON object", metrics.string(), 0, "");
+  const auto path = j.find("dataset_path");
+  return path != j.end() && path->is_string() ? fs::path(path->get<std::string>()) : fs::path();
 }
 
 ServedFiles served_files(const fs::path& target, const std::string& dataset,
@@ -98,8 +98,7 @@ void add_serve_command(CLI::App& root) {
     const ServedFiles files = served_files(args->target, args->dataset, args->model);
     std::shared_ptr<const PointMapping> model = io::read_model(files.model);
     const io::LoadedDataset d = io::load_dataset(files.dataset);
-    const std::string name =
-        d.manifest.name.empty() ? d.manifest.folder().filename().string() : d.manifest.name;
+    const std::string name = d.manifest.display_name();
     server::ViewerSession session(std::move(model), name, server::viewer_map(d.plan_grid),
                                   server::viewer_map(d.gridmap));
     if (!files.pairs.empty())

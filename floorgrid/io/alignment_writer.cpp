@@ -169,7 +169,7 @@ json metrics_json(const Alignment& a, const std::string& dataset, const Alignmen
                         {"score", number(r.score)},
                         {"on_walls", number(r.on_walls)},
                         {"in_free_space", number(r.in_free_space)},
-                        {"runner_up_score", number(m.registration.runner_up.score)},
+                        {"runner_up_score", number(m.registration.runner_up().score)},
                         {"correlation", m.registration.correlation},
                         {"seconds", number(m.registration.seconds)}}}};
     if (m.runner_up) {

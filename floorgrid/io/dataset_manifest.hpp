@@ -49,6 +49,8 @@ struct DatasetManifest {
 
   /// The folder the manifest lives in.
   std::filesystem::path folder() const { return manifest_path.parent_path(); }
+  /// What the dataset is called: its `name`, else its folder's name.
+  std::string display_name() const { return name.empty() ? folder().filename().string() : name; }
 };
 
 /// The manifest's top-level keys (SPEC's and the project's own).

@@ -280,15 +280,18 @@ struct PngWriteGuard {
   ~PngWriteGuard() { png_destroy_write_struct(&png, &info); }
 };
 
+// Whether `size` bytes are an image of this size with 1-4 channels.
+bool buffer_fits(int width, int height, int channels, std::size_t size) {
+  return width > 0 && height > 0 && channels >= 1 && channels <= 4 &&
+         size == static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * channels;
+}
+
 }  // namespace
 
 std::string encode_png(int width, int height, int channels,
                        const std::vector<std::uint8_t>& pixels) {
-  if (width <= 0 || height <= 0 || channels < 1 || channels > 4 ||
-      pixels.size() !=
-          static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * channels) {
+  if (!buffer_fits(width, height, channels, pixels.size()))
     throw std::invalid_argument("encode_png: the pixels do not match the image's size");
-  }
   std::string out;
   PngWriteState state{&out, {}};
   PngWriteGuard guard;
@@ -324,10 +327,8 @@ namespace {
 
 void check_buffer(const std::filesystem::path& path, int width, int height, int channels,
                   std::size_t size) {
-  if (width <= 0 || height <= 0 ||
-      size != static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * channels) {
+  if (!buffer_fits(width, height, channels, size))
     throw std::invalid_argument("image buffer does not match its size for " + path.string());
-  }
 }
 
 }  // namespace

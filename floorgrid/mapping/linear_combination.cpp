@@ -23,7 +23,14 @@ LinearCombinationMapping::LinearCombinationMapping(MappingCommonOptions common,
   if (!(options_.min_angle_deg > 0.0 && options_.min_angle_deg < 60.0)) {
     throw InputError("must be in (0, 60) degrees", {}, 0, "lc.min_angle_deg");
   }
-  min_sin_angle_ = std::sin(options_.min_angle_deg * std::numbers::pi / 180.0);
+  set_min_angle(options_.min_angle_deg);
+}
+
+void LinearCombinationMapping::set_min_angle(double degrees) {
+  options_.min_angle_deg = degrees;
+  min_sin_angle_ = std::sin(degrees * std::numbers::pi / 180.0);
+  // 0.999: rounding never skips a farthest vertex that has a well-shaped triangle.
+  half_sin2_ = 0.999 * std::pow(std::sin(degrees * std::numbers::pi / 360.0), 2);
 }
 
 void LinearCombinationMapping::prepare(const ReferencePairs& pairs, double cell_m) {
@@ -129,9 +136,6 @@ class DirectionArc {
 LinearCombinationMapping::Triangle LinearCombinationMapping::choose(
     const Eigen::Vector2d& p) const {
   const auto& P = pairs_.points_in_plan;
-  // 0.999: rounding never skips a farthest vertex that has a well-shaped triangle.
-  const double half_sin2 =
-      0.999 * std::pow(std::sin(options_.min_angle_deg * std::numbers::pi / 360.0), 2);
   for (std::size_t k = static_cast<std::size_t>(options_.neighbours);; k *= 2) {
     const auto near = plan_index_.nearest_k(p, k);
     // A triangle scores by its farthest vertex (the neighbours come nearest first): grow the
@@ -147,7 +151,7 @@ LinearCombinationMapping::Triangle LinearCombinationMapping::choose(
       around.add(c);
       const bool may_hold = around.surrounded();
       if (l < 2 || (nearest_not_holding.valid() && !may_hold) ||
-          !seen_apart(P, near, l, c, half_sin2))
+          !seen_apart(P, near, l, c, half_sin2_))
         continue;
       bool next_vertex = false;
       for (std::size_t i = 0; i + 1 < l && !next_vertex; ++i) {
@@ -385,9 +389,8 @@ void LinearCombinationMapping::load_parameters(const Value& j, const std::string
   // costs its cube per mapped point.
   options_.neighbours = static_cast<int>(
       integer(member(j, "neighbours", where, p), where, p + "neighbours", 3, kMaxNeighbours));
-  options_.min_angle_deg =
-      number(member(j, "min_angle_deg", where, p), where, p + "min_angle_deg", 1e-3, 60.0);
-  min_sin_angle_ = std::sin(options_.min_angle_deg * std::numbers::pi / 180.0);
+  set_min_angle(
+      number(member(j, "min_angle_deg", where, p), where, p + "min_angle_deg", 1e-3, 60.0));
   ReferencePairs pairs;
   pairs.points_in_plan = points(member(j, "plan", where, p), where, p + "plan");
   pairs.points_in_grid = points(member(j, "grid", where, p), where, p + "grid");

@@ -91,8 +91,12 @@ class LinearCombinationMapping : public PointMapping {
   LinearCombinationOptions options_;
   ReferencePairs pairs_;
   PointIndex2D plan_index_;
-  double min_sin_angle_ = 0.17;
-  PlanLattice cells_;                     ///< nodes are the cells' corners
+  /// Sets min_angle_deg and the sines derived from it.
+  void set_min_angle(double degrees);
+
+  double min_sin_angle_ = 0.17;  ///< sine of the smallest angle a triangle may have
+  double half_sin2_ = 0.0;       ///< squared sine of half of it (a little less: see choose)
+  PlanLattice cells_;            ///< nodes are the cells' corners
   std::vector<std::int32_t> cell_piece_;  ///< per cell: its index into pieces_
   std::vector<Piece> pieces_;             ///< the distinct maps of the cells
   GridBoxIndex cell_images_;              ///< per cell: the grid box of its image

@@ -158,10 +158,11 @@ MapAlignment align_on_maps(const AlignmentInputs& in, const AlignmentOptions& op
     l.notes.push_back(fmt::format(
         "maps only: the gridmap registered on the plan at scale {:.4f}, turned {:.1f} deg, score "
         "{:.2f} (runner-up {:.2f}), then bent onto it in {} stages: {} of {} gridmap wall points "
-        "(on a straight wall) within {:.2f} m of a plan wall became pairs; fitness {:.2f} ({:.0f}% of the gridmap's "
+        "(on a straight wall) within {:.2f} m of a plan wall became pairs; fitness {:.2f} ({:.0f}% "
+        "of the gridmap's "
         "walls on the plan's, {:.0f}% of the plan's walls in free space) in {:.1f} s",
         s.scale, s.theta * 180.0 / std::numbers::pi, m.registration.best.score,
-        m.registration.runner_up.score, m.stages, m.pairs.size(), m.points,
+        m.registration.runner_up().score, m.stages, m.pairs.size(), m.points,
         options.maps_only.pair_radius, m.fit.score, 100.0 * m.fit.on_walls,
         100.0 * m.fit.in_free_space, m.seconds));
     if (m.runner_up) {

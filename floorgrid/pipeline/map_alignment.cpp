@@ -203,8 +203,7 @@ MapAlignment align_maps(const OccupancyGrid& gridmap, const OccupancyGrid& plan,
   const double scale = warp.similarity.scale;
 
   // The final matches of the points on a straight wall are the pairs: the plan wall surface
-  // point, the gridmap wall point. (The bending used every point; lc's search for a triangle
-  // among pairs in straight rows is why it passes over collinear neighbours quickly.)
+  // point, the gridmap wall point (the bending used every point).
   std::vector<Eigen::Vector2d> plan_side, grid_side;
   std::vector<double> distances;
   for (const WallPoint& w : points) {

@@ -387,8 +387,8 @@ MapRegistration register_maps(MapFitScorer& scorer, const MapRegistrationOptions
     starts.clear();
     for (const CorrelationCandidate& c : correlation_candidates(inputs, options.correlation))
       starts.push_back(c.transform);
-    for (const ScoredSimilarity& r : refine_each(scorer, starts, options))
-      refined.push_back(r);
+    const std::vector<ScoredSimilarity> more = refine_each(scorer, starts, options);
+    refined.insert(refined.end(), more.begin(), more.end());
   }
   result.candidates = refined.size();
   std::sort(refined.begin(), refined.end(),
@@ -413,8 +413,6 @@ MapRegistration register_maps(MapFitScorer& scorer, const MapRegistrationOptions
     for (ScoredSimilarity& a : result.alternatives)
       a = scorer.score(a.transform, options.sigma);
   }
-  if (!result.alternatives.empty())
-    result.runner_up = result.alternatives.front();
   result.seconds = seconds_since(clock);
   return result;
 }

@@ -48,13 +48,15 @@ void validate(const MapRegistrationOptions& options,
 struct MapRegistration {
   bool found = false;     ///< a transform was scored (false: a map had no walls)
   ScoredSimilarity best;  ///< the best transform after refinement
-  /// The best candidate of another scale (beyond 5%) or pose (beyond 2 m or 10 degrees): how
-  /// clearly the best won.
-  ScoredSimilarity runner_up;
-  /// The refined candidates distinct from the best and from each other, best first (the first
-  /// is the runner-up), at most MapRegistrationOptions::alternatives: other places the gridmap
-  /// could be, for an alignment that looks further than the similarity.
+  /// The refined candidates of another scale (beyond 5%) or pose (beyond 2 m or 10 degrees)
+  /// than the best and than each other, best first, at most
+  /// MapRegistrationOptions::alternatives: other places the gridmap could be, for an alignment
+  /// that looks further than the similarity.
   std::vector<ScoredSimilarity> alternatives;
+  /// The best of the alternatives (a zero score when there is none): how clearly the best won.
+  ScoredSimilarity runner_up() const {
+    return alternatives.empty() ? ScoredSimilarity{} : alternatives.front();
+  }
   std::size_t candidates = 0;  ///< verified in 2D
   bool correlation = false;    ///< whether the 2-D correlation search ran
   double seconds = 0.0;        ///< wall clock

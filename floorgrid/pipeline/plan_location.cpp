@@ -70,9 +70,9 @@ ScaleRange scale_range(const DualMaps& maps, const DualLocalizerInputs& inputs,
       "of the gridmap's walls on the plan's, {:.0f}% of the plan's walls in free space; "
       "runner-up {:.2f} at scale {:.4f}) in {:.1f} s",
       scale, reg.best.transform.theta * 180.0 / std::numbers::pi, reg.best.score,
-      100.0 * reg.best.on_walls, 100.0 * reg.best.in_free_space, reg.runner_up.score,
-      1.0 / reg.runner_up.transform.scale, reg.seconds));
-  const bool is_clear = reg.best.score - reg.runner_up.score >= step.map_clear_margin;
+      100.0 * reg.best.on_walls, 100.0 * reg.best.in_free_space, reg.runner_up().score,
+      1.0 / reg.runner_up().transform.scale, reg.seconds));
+  const bool is_clear = reg.best.score - reg.runner_up().score >= step.map_clear_margin;
   const ScaleRange& usual = options.scale_search.range;
   // A clear registration's scale and pose are kept as they are: the plan filter's search and
   // refit are biased by how the walls are drawn (a raster's thick strokes: -0.2 to -1%; a DXF's

@@ -3,8 +3,8 @@
 #include <httplib.h>
 
 #include <stdexcept>
-
 #include <utility>
+
 #include "floorgrid/core/error.hpp"
 
 namespace floorgrid::server {
@@ -54,7 +54,6 @@ struct ViewerServer::Impl {
   ViewerSession& session;
   ServerOptions options;
   httplib::Server http;
-  int port = -1;
 };
 
 ViewerServer::ViewerServer(ViewerSession& session, ServerOptions options)
@@ -163,16 +162,14 @@ ViewerServer::~ViewerServer() {
 
 int ViewerServer::bind() {
   Impl& s = *impl_;
-  if (s.options.port == 0) {
-    s.port = s.http.bind_to_any_port(s.options.host);
-  } else {
-    s.port = s.http.bind_to_port(s.options.host, s.options.port) ? s.options.port : -1;
-  }
-  if (s.port < 0) {
+  const int port = s.options.port == 0 ? s.http.bind_to_any_port(s.options.host)
+                   : s.http.bind_to_port(s.options.host, s.options.port) ? s.options.port
+                                                                         : -1;
+  if (port < 0) {
     throw std::runtime_error("cannot listen on " + s.options.host + ":" +
                              std::to_string(s.options.port));
   }
-  return s.port;
+  return port;
 }
 
 void ViewerServer::listen() {

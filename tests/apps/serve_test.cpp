@@ -23,6 +23,13 @@ TEST(ServeCommand, EveryMistakeNamesTheOptionAndListensNowhere) {
   const auto model = make_mapping(options);
   model->fit(pairs_of({{0, 0}, {4, 0}, {0, 3}, {4, 3}}, {{1, 2}, {5, 2}, {1, 5}, {5, 5}}));
   io::write_model(*model, root / "align" / "model.json");
+  // Two more: one whose metrics.json is torn, one whose names no dataset.
+  for (const char* name : {"torn", "unnamed"}) {
+    std::filesystem::create_directories(root / name);
+    std::filesystem::copy_file(root / "align" / "model.json", root / name / "model.json");
+  }
+  write_file(root / "torn" / "metrics.json", "{\"dataset_path\": ");
+  write_file(root / "unnamed" / "metrics.json", "{\"dataset\": \"office\"}");
   std::filesystem::create_directories(root / "dataset");
   write_file(root / "dataset" / "dataset.yaml", "floorplan: plan.png\n");
 
@@ -31,6 +38,8 @@ TEST(ServeCommand, EveryMistakeNamesTheOptionAndListensNowhere) {
   } cases[] = {
       {quoted(root / "nowhere"), "no such file"},
       {quoted(root / "align"), "--dataset"},
+      {quoted(root / "torn"), "not a JSON object"},
+      {quoted(root / "unnamed"), "--dataset"},
       {quoted(root / "dataset"), "--model"},
       {quoted(root / "dataset") + " --model " + quoted(root / "align" / "model.json") +
            " --dataset " + quoted(root / "dataset"),
