@@ -20,4 +20,9 @@ if [ -d "$(dirname "$0")/../../shared/data/fr079" ] && [ "$filter" = "." ]; then
   "$build/bench/localization_accuracy_eval" "$fixture" | tee "$out/fr079_localization.txt" |
     grep -E "^(time|gridmap|tracking|scale|converged)"
 fi
+# The viewer's API: 10,000 requests of 100 points each from 8 concurrent clients on loopback.
+if [ "$filter" = "." ]; then
+  echo "== viewer API load (bench/viewer_load)"
+  "$build/bench/viewer_load" | tee "$out/viewer_load.txt"
+fi
 echo "results: $out"

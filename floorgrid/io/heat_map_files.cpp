@@ -46,22 +46,13 @@ HeatMapDomain heat_map_domain(const AlignmentInputs& in, const std::optional<Gro
   return domain;
 }
 
-ModelHeatMaps write_model_heat_maps(const std::filesystem::path& folder, const std::string& name,
-                                    const PointMapping& model, const AlignmentInputs& in,
-                                    const std::optional<GroundTruth>& truth,
-                                    const HeatMapDomain& domain, const HeatMapOptions& options) {
-  const auto start = Clock::now();
-  prepare_output_folder(folder / "heatmaps");
-  ModelHeatMaps out;
+ModelHeatMapValues model_heat_maps(const PointMapping& model, const AlignmentInputs& in,
+                                   const std::optional<GroundTruth>& truth,
+                                   const HeatMapDomain& domain, const HeatMapOptions& options) {
+  ModelHeatMapValues out;
   const GridGeometry& raster = in.plan_grid.geometry();
-  out.metrics = json::object();
-  if (truth && !domain.cells.empty()) {
-    const HeatMap errors = error_heat_map(model, batch_of(*truth), raster, domain.cells, options);
-    const std::filesystem::path file =
-        std::filesystem::path("heatmaps") / ("heat-" + name + ".png");
-    out.metrics["error"] = write_map(folder, file, errors, in.plan_grid);
-    out.files.push_back(file);
-  }
+  if (truth && !domain.cells.empty())
+    out.error = error_heat_map(model, batch_of(*truth), raster, domain.cells, options);
   // Without a truth: where the model puts the plan on what the robot saw.
   const CellMask cells = !domain.cells.empty()
                              ? domain.cells
@@ -71,11 +62,30 @@ ModelHeatMaps write_model_heat_maps(const std::filesystem::path& folder, const s
                                      return model.forward_batch(points);
                                    },
                                    options);
-  const HeatMap uncertainty = uncertainty_map(model, raster, cells, options);
+  out.uncertainty = uncertainty_map(model, raster, cells, options);
+  out.domain = domain.cells.empty() ? "model_observed" : domain.kind;
+  return out;
+}
+
+ModelHeatMaps write_model_heat_maps(const std::filesystem::path& folder, const std::string& name,
+                                    const PointMapping& model, const AlignmentInputs& in,
+                                    const std::optional<GroundTruth>& truth,
+                                    const HeatMapDomain& domain, const HeatMapOptions& options) {
+  const auto start = Clock::now();
+  prepare_output_folder(folder / "heatmaps");
+  ModelHeatMaps out;
+  out.metrics = json::object();
+  const ModelHeatMapValues maps = model_heat_maps(model, in, truth, domain, options);
+  if (maps.error) {
+    const std::filesystem::path file =
+        std::filesystem::path("heatmaps") / ("heat-" + name + ".png");
+    out.metrics["error"] = write_map(folder, file, *maps.error, in.plan_grid);
+    out.files.push_back(file);
+  }
   const std::filesystem::path file = std::filesystem::path("heatmaps") / ("std-" + name + ".png");
-  out.metrics["uncertainty"] = write_map(folder, file, uncertainty, in.plan_grid);
+  out.metrics["uncertainty"] = write_map(folder, file, maps.uncertainty, in.plan_grid);
   out.files.push_back(file);
-  out.metrics["domain"] = domain.cells.empty() ? "model_observed" : domain.kind;
+  out.metrics["domain"] = maps.domain;
   out.seconds = seconds_since(start);
   return out;
 }

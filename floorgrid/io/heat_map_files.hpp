@@ -25,6 +25,21 @@ HeatMapDomain heat_map_domain(const AlignmentInputs& inputs,
                               const std::optional<GroundTruth>& truth, const std::string& kind,
                               const HeatMapOptions& options = {});
 
+/// A model's heat maps over the plan grid: its error against the truth over the truth's cells
+/// (with a truth), and its own uncertainty (std_m, or the distance to the nearest pair when it
+/// states no std_m) over the truth's cells, or without a truth over the cells it maps onto what
+/// the gridmap observed.
+struct ModelHeatMapValues {
+  std::optional<HeatMap> error;  ///< |model - truth|, with a truth
+  HeatMap uncertainty;           ///< the model's own say
+  std::string domain;            ///< the cells': the truth's kind, or "model_observed"
+};
+
+/// Computes a model's heat maps (`domain` from heat_map_domain).
+ModelHeatMapValues model_heat_maps(const PointMapping& model, const AlignmentInputs& inputs,
+                                   const std::optional<GroundTruth>& truth,
+                                   const HeatMapDomain& domain, const HeatMapOptions& options = {});
+
 /// What write_model_heat_maps wrote.
 struct ModelHeatMaps {
   std::vector<std::filesystem::path> files;  ///< relative to the output folder
@@ -32,11 +47,9 @@ struct ModelHeatMaps {
   double seconds = 0.0;                      ///< computing and writing them
 };
 
-/// Writes a model's heat maps over the plan grid into `folder`/heatmaps (created when
-/// missing): heat-<name>.png, its error against the truth over the truth's cells (with a
-/// truth), and std-<name>.png, its own uncertainty (std_m, or the distance to the nearest pair
-/// when it states no std_m) over the truth's cells, or without a truth over the cells it maps
-/// onto what the gridmap observed. Each PNG carries its colour bar (in metres, with the clip).
+/// Writes a model's heat maps (model_heat_maps) into `folder`/heatmaps (created when missing):
+/// heat-<name>.png, the error (with a truth), and std-<name>.png, the uncertainty. Each PNG
+/// carries its colour bar (in metres, with the clip).
 ModelHeatMaps write_model_heat_maps(const std::filesystem::path& folder, const std::string& name,
                                     const PointMapping& model, const AlignmentInputs& inputs,
                                     const std::optional<GroundTruth>& truth,

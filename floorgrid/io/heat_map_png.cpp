@@ -74,9 +74,9 @@ RgbaImage render_with_clip(const HeatMap& map, double clip, const HeatMapStyle& 
   const int margin = 4 * s, bar_w = 8 * s;
   const int panel_w = std::max<int>(margin + bar_w + 3 * s + 6 * glyph_w + margin,
                                     2 * margin + static_cast<int>(longest) * glyph_w);
-  const int height = std::max(h, 2 * margin + 3 * line_h + 40 * s);
+  const int height = style.legend ? std::max(h, 2 * margin + 3 * line_h + 40 * s) : h;
 
-  RgbaImage image{w + panel_w, height, {}};
+  RgbaImage image{style.legend ? w + panel_w : w, height, {}};
   image.rgba.assign(static_cast<std::size_t>(image.width) * image.height * 4, 0);
   const int top_pad = height - h;  // a short map sits at the bottom of a taller panel
   const bool walls = plan && plan->width() == w && plan->height() == h;
@@ -90,6 +90,8 @@ RgbaImage render_with_clip(const HeatMap& map, double clip, const HeatMapStyle& 
         image.set(ix, row, colour_of(v, clip));
     }
   }
+  if (!style.legend)
+    return image;
 
   // The panel: title, bar with ticks, how the clip was chosen.
   for (int row = 0; row < height; ++row)

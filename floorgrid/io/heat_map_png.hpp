@@ -16,6 +16,9 @@ struct HeatMapStyle {
   double clip_m = 0.0;
   double quantile = 0.95;     ///< the percentile of the automatic clip
   double min_clip_m = 0.001;  ///< metres: the automatic clip is at least this
+  /// false: the map alone, one pixel per cell and no colour-bar panel (the viewer draws its
+  /// own legend over a map layer of exactly the raster's bounds).
+  bool legend = true;
 };
 
 /// The clip a style gives a heat map, metres (> 0).

@@ -2,11 +2,16 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <iterator>
 #include <string>
 
+#include "floorgrid/core/error.hpp"
+#include "floorgrid/geometry/reference_pairs.hpp"
 #include "floorgrid/io/atomic_file.hpp"
+#include "floorgrid/io/csv_lines.hpp"
 
 namespace floorgrid::io {
 
@@ -36,6 +41,42 @@ void write_scans_csv(const DualLocalization& localization, const RobotLog& log,
     fmt::format_to(std::back_inserter(out), ",{},{}\n", r.consistent ? 1 : 0, r.pairs);
   }
   write_file_atomically(path, out);
+}
+
+std::vector<TimedPose> read_grid_track(const std::filesystem::path& path) {
+  constexpr std::array<std::string_view, 5> kNeeded = {"time", "grid_x", "grid_y", "grid_theta",
+                                                       "grid_state"};
+  CsvLines lines(path);
+  std::vector<std::string_view> fields;
+  if (!lines.next(fields))
+    throw InputError("empty file: expected a scans.csv header", lines.file());
+  std::array<std::size_t, kNeeded.size()> column{};
+  for (std::size_t k = 0; k < kNeeded.size(); ++k) {
+    const auto it = std::find(fields.begin(), fields.end(), kNeeded[k]);
+    if (it == fields.end()) {
+      throw InputError(fmt::format("no '{}' column in the header", kNeeded[k]), lines.file(),
+                       lines.line(), std::string(kNeeded[k]));
+    }
+    column[k] = static_cast<std::size_t>(it - fields.begin());
+  }
+  const std::size_t width = fields.size();
+  std::vector<TimedPose> track;
+  while (lines.next(fields)) {
+    if (fields.size() != width) {
+      throw InputError(fmt::format("expected {} fields, got {}", width, fields.size()),
+                       lines.file(), lines.line());
+    }
+    if (fields[column[4]] != to_string(FilterState::tracking))
+      continue;  // a filter still searching or lost has no pose worth showing
+    TimedPose p;
+    const std::string_view time = fields[column[0]];
+    p.time = time == "nan" || time.empty() ? std::nan("") : lines.number(time, "time", 1e12);
+    p.pose_in_grid.x = lines.number(fields[column[1]], "grid_x", kMaxCoordinate);
+    p.pose_in_grid.y = lines.number(fields[column[2]], "grid_y", kMaxCoordinate);
+    p.pose_in_grid.theta = lines.number(fields[column[3]], "grid_theta", 100.0);
+    track.push_back(p);
+  }
+  return track;
 }
 
 }  // namespace floorgrid::io

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <filesystem>
+#include <vector>
 
 #include "floorgrid/pipeline/dual_localizer.hpp"
 #include "floorgrid/robot/robot_log.hpp"
@@ -17,5 +18,16 @@ namespace floorgrid::io {
 /// filter stood on each scan: what an operator looks at when the converged share is low.
 void write_scans_csv(const DualLocalization& localization, const RobotLog& log,
                      const std::filesystem::path& path);
+
+/// A gridmap pose of the run at a time: what `serve --replay` feeds as the live pose.
+struct TimedPose {
+  double time = 0.0;  ///< the scan's timestamp, seconds (NaN where the log had none)
+  Pose2 pose_in_grid;
+};
+
+/// The gridmap filter's track from a scans.csv (columns found by the header: time, grid_x,
+/// grid_y, grid_theta, grid_state), the scans where it was tracking. InputError naming the file
+/// and line on a missing column or a bad number.
+std::vector<TimedPose> read_grid_track(const std::filesystem::path& path);
 
 }  // namespace floorgrid::io

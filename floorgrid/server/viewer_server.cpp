@@ -2,6 +2,7 @@
 
 #include <httplib.h>
 
+#include <algorithm>
 #include <stdexcept>
 #include <utility>
 
@@ -33,6 +34,47 @@ nlohmann::json map_info(const ViewerMap& map) {
           {"bounds", {{box.min().x(), box.min().y()}, {box.max().x(), box.max().y()}}}};
 }
 
+/// The robot's pose on the plan: where the model puts the grid pose, with its uncertainty.
+nlohmann::json robot_on_plan(const PointMapping& model, const Pose2& pose_in_grid) {
+  const MappedPoint m = model.map_inverse(pose_in_grid.translation());
+  const std::optional<Pose2> pose =
+      m.flag == MapFlag::not_invertible ? std::nullopt : model.inverse_pose(pose_in_grid);
+  if (!pose)
+    return {{"x", nullptr},
+            {"y", nullptr},
+            {"theta", nullptr},
+            {"std_m", nullptr},
+            {"flag", to_string(MapFlag::not_invertible)}};
+  return {{"x", pose->x},
+          {"y", pose->y},
+          {"theta", pose->theta},
+          {"std_m", m.std_m ? nlohmann::json(*m.std_m) : nlohmann::json(nullptr)},
+          {"flag", to_string(m.flag)}};
+}
+
+/// At most this many of the alignment's pairs go to the page (evenly thinned).
+constexpr Eigen::Index kMaxBasePairsShown = 20000;
+
+nlohmann::json base_pairs_json(const ReferencePairs& pairs) {
+  nlohmann::json out = nlohmann::json::array();
+  const Eigen::Index n = pairs.points_in_plan.cols();
+  const Eigen::Index shown = std::min(n, kMaxBasePairsShown);
+  for (Eigen::Index k = 0; k < shown; ++k) {
+    const Eigen::Index i = k * n / shown;
+    out.push_back({pairs.points_in_plan(0, i), pairs.points_in_plan(1, i),
+                   pairs.points_in_grid(0, i), pairs.points_in_grid(1, i)});
+  }
+  return out;
+}
+
+/// The layers of this session's model now; RequestError 404 when it draws none.
+VersionedLayers session_layers(ViewerSession& session) {
+  VersionedLayers layers = session.layers();
+  if (!layers.layers)
+    throw RequestError(404, "this session draws no layers (serve it with a dataset)");
+  return layers;
+}
+
 /// Runs a handler, answering a RequestError with its status and message.
 template <typename Handler>
 httplib::Server::Handler guarded(Handler handler) {
@@ -60,6 +102,10 @@ ViewerServer::ViewerServer(ViewerSession& session, ServerOptions options)
     : impl_(std::make_unique<Impl>(session, std::move(options))) {
   Impl& s = *impl_;
   s.http.set_payload_max_length(s.options.max_body_bytes);
+  const auto threads = static_cast<std::size_t>(std::max(1, s.options.threads));
+  s.http.new_task_queue = [threads] { return new httplib::ThreadPool(threads); };
+  s.http.set_keep_alive_timeout(2);
+  s.http.set_tcp_nodelay(true);  // an answer written in parts must not wait for an ACK
   s.http.set_read_timeout(10, 0);
   s.http.set_write_timeout(10, 0);
   s.http.set_exception_handler(
@@ -84,11 +130,20 @@ ViewerServer::ViewerServer(ViewerSession& session, ServerOptions options)
 
   const RequestLimits limits = s.options.limits;
   s.http.Get("/api/info", guarded([&session](const httplib::Request&, httplib::Response& res) {
-               answer_json(res, {{"dataset", session.dataset()},
-                                 {"model", session.model()->name()},
-                                 {"plan", map_info(session.plan())},
-                                 {"grid", map_info(session.grid())},
-                                 {"robot_pose_sequence", session.robot_pose().sequence}});
+               nlohmann::json replay = nullptr;
+               if (const std::optional<ReplayInfo>& r = session.replay())
+                 replay = {{"poses", r->poses}, {"speed", r->speed}};
+               answer_json(
+                   res, {{"dataset", session.dataset()},
+                         {"model", session.model()->name()},
+                         {"model_version", session.model_version()},
+                         {"models", mapping_model_names()},
+                         {"plan", map_info(session.plan())},
+                         {"grid", map_info(session.grid())},
+                         {"layers",
+                          {{"overlay", session.has_layers()}, {"heatmap", session.has_layers()}}},
+                         {"replay", replay},
+                         {"robot_pose_sequence", session.robot_pose().sequence}});
              }));
   for (const char* which : {"plan", "grid"}) {
     const ViewerMap& map = std::string(which) == "plan" ? session.plan() : session.grid();
@@ -113,6 +168,7 @@ ViewerServer::ViewerServer(ViewerSession& session, ServerOptions options)
                  body["x"] = r.pose_in_grid.x;
                  body["y"] = r.pose_in_grid.y;
                  body["theta"] = r.pose_in_grid.theta;
+                 body["plan"] = robot_on_plan(*session.model(), r.pose_in_grid);
                }
                answer_json(res, body);
              }));
@@ -121,14 +177,22 @@ ViewerServer::ViewerServer(ViewerSession& session, ServerOptions options)
                 const Pose2 pose = parse_robot_pose(parse_request(req.body));
                 answer_json(res, {{"sequence", session.post_robot_pose(pose)}});
               }));
-  s.http.Get("/api/pairs", guarded([&session](const httplib::Request&, httplib::Response& res) {
+  s.http.Get("/api/pairs", guarded([&session](const httplib::Request& req, httplib::Response& res) {
                nlohmann::json pairs = nlohmann::json::array();
                for (const ManualPair& p : session.manual_pairs()) {
                  pairs.push_back({{"id", p.id},
                                   {"plan", {p.point_in_plan.x(), p.point_in_plan.y()}},
                                   {"grid", {p.point_in_grid.x(), p.point_in_grid.y()}}});
                }
-               answer_json(res, {{"pairs", pairs}, {"base_pairs", session.base_pairs().size()}});
+               nlohmann::json body{{"pairs", pairs}, {"base_pairs", session.base_pairs().size()}};
+               if (req.has_param("base")) {
+                 const std::string base = req.get_param_value("base");
+                 if (base != "0" && base != "1")
+                   throw RequestError(400, "'base' must be 0 or 1 (got \"" + base + "\")");
+                 if (base == "1")
+                   body["base"] = base_pairs_json(session.base_pairs());
+               }
+               answer_json(res, body);
              }));
   s.http.Post("/api/pairs",
               guarded([&session](const httplib::Request& req, httplib::Response& res) {
@@ -151,8 +215,48 @@ ViewerServer::ViewerServer(ViewerSession& session, ServerOptions options)
             res,
             {{"model", r.model}, {"pairs", r.pairs}, {"rms_m", r.rms_m}, {"seconds", r.seconds}});
       }));
-  if (!s.options.web_root.empty() && !s.http.set_mount_point("/", s.options.web_root.string())) {
-    throw std::runtime_error("the web root " + s.options.web_root.string() + " is not a folder");
+  s.http.Get("/api/overlay.png",
+             guarded([&session](const httplib::Request&, httplib::Response& res) {
+               const VersionedLayers layers = session_layers(session);
+               if (layers.layers->overlay_png.empty())
+                 throw RequestError(404, "this session has no overlay");
+               res.set_header("Cache-Control", "no-cache");
+               res.set_content(layers.layers->overlay_png, "image/png");
+             }));
+  s.http.Get("/api/heatmap", guarded([&session](const httplib::Request&, httplib::Response& res) {
+               const VersionedLayers layers = session_layers(session);
+               nlohmann::json list = nlohmann::json::array();
+               for (const HeatLayer& h : layers.layers->heat) {
+                 list.push_back({{"kind", h.kind},
+                                 {"quantity", h.quantity},
+                                 {"clip_m", h.clip_m},
+                                 {"url", "/api/heatmap.png?kind=" + h.kind +
+                                             "&v=" + std::to_string(layers.model_version)}});
+               }
+               answer_json(res, {{"model_version", layers.model_version},
+                                 {"model", session.model()->name()},
+                                 {"seconds", layers.layers->seconds},
+                                 {"layers", list}});
+             }));
+  s.http.Get("/api/heatmap.png",
+             guarded([&session](const httplib::Request& req, httplib::Response& res) {
+               const VersionedLayers layers = session_layers(session);
+               const std::string kind =
+                   req.has_param("kind") ? req.get_param_value("kind") : std::string("std");
+               std::string known;
+               for (const HeatLayer& h : layers.layers->heat) {
+                 if (h.kind == kind) {
+                   res.set_header("Cache-Control", "no-cache");
+                   return res.set_content(h.png, "image/png");
+                 }
+                 known += (known.empty() ? "" : ", ") + h.kind;
+               }
+               throw RequestError(
+                   404, "no heat map of kind '" + kind + "' (this session has " + known + ")");
+             }));
+  for (const StaticMount& mount : s.options.static_files) {
+    if (!s.http.set_mount_point(mount.prefix, mount.folder.string()))
+      throw std::runtime_error("the web folder " + mount.folder.string() + " is not a folder");
   }
 }
 

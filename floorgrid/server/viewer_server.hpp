@@ -4,33 +4,52 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "floorgrid/server/map_request.hpp"
 #include "floorgrid/server/viewer_session.hpp"
 
 namespace floorgrid::server {
 
+/// A folder whose files are served under a URL prefix (nothing outside it).
+struct StaticMount {
+  std::string prefix;            ///< "/" or "/vendor/leaflet/"
+  std::filesystem::path folder;  ///< must exist
+};
+
 /// Where and how the viewer's server listens.
 struct ServerOptions {
   std::string host = "127.0.0.1";         ///< loopback unless told otherwise
   int port = 8080;                        ///< 0: any free port (bind() says which)
-  std::filesystem::path web_root;         ///< static files served at /, none when empty
+  std::vector<StaticMount> static_files;  ///< the page's files (none: the API alone)
   std::size_t max_body_bytes = 8u << 20;  ///< larger request bodies get 413
-  RequestLimits limits;                   ///< what one request may ask for
+  /// Threads answering requests. A kept-alive connection holds one while it lasts: a browser
+  /// keeps up to 6, so a pool of 8 (cpp-httplib's default) starves a second page or client.
+  int threads = 32;
+  RequestLimits limits;  ///< what one request may ask for
 };
 
 /// The viewer's HTTP server (cpp-httplib): the JSON API over a ViewerSession and the static
 /// files of the web root (nothing outside it). Every bad request gets a 4xx status and
 /// {"error": message naming the field}.
-///   GET  /api/info         {"dataset", "model", "robot_pose_sequence"}
+///   GET  /api/info         {"dataset", "model", "model_version", "models", "plan", "grid"
+///                          (pixels, resolution, origin, bounds), "layers", "replay",
+///                          "robot_pose_sequence"}
+///   GET  /api/maps/plan.png, /api/maps/grid.png   the maps' pictures (info's bounds)
 ///   POST /api/map          see map_points
-///   GET  /api/robot_pose   {"sequence", "x", "y", "theta"} (sequence 0: none yet)
+///   GET  /api/robot_pose   {"sequence", "x", "y", "theta", "plan": {"x", "y", "theta",
+///                          "std_m", "flag"}} (sequence 0: none yet, and no pose)
 ///   POST /api/robot_pose   {"x", "y", "theta"} in the grid frame -> {"sequence"}
-///   GET  /api/pairs        {"pairs": [{"id", "plan", "grid"}], "base_pairs"}: the manual ones
+///   GET  /api/pairs        {"pairs": [{"id", "plan", "grid"}], "base_pairs"}: the manual ones;
+///                          ?base=1 adds "base": [[plan x, y, grid x, y]] (at most 20,000)
 ///   POST /api/pairs        {"plan": [x, y], "grid": [x, y]} -> 201 {"id"}
 ///   DELETE /api/pairs/ID   {"deleted"}, 404 when there is no such pair
 ///   POST /api/fit          {"model"} -> {"model", "pairs", "rms_m", "seconds"}: fitted to the
 ///                          alignment's and the manual pairs, then swapped in
+///   GET  /api/overlay.png  the plan's walls through the model on the gridmap's pixels
+///   GET  /api/heatmap      {"model_version", "model", "seconds", "layers": [{"kind",
+///                          "quantity", "clip_m", "url"}]}
+///   GET  /api/heatmap.png?kind=error|std   a heat map on the plan's pixels
 class ViewerServer {
  public:
   /// A server over `session` (which must outlive it).

@@ -31,6 +31,28 @@ void ViewerSession::set_model(std::shared_ptr<const PointMapping> model) {
     throw std::invalid_argument("ViewerSession: a null model");
   const std::lock_guard lock(mutex_);
   model_ = std::move(model);
+  ++model_version_;
+}
+
+std::uint64_t ViewerSession::model_version() const {
+  const std::lock_guard lock(mutex_);
+  return model_version_;
+}
+
+VersionedLayers ViewerSession::layers() {
+  if (!renderer_)
+    return {model_version(), nullptr};
+  const std::lock_guard drawing(layers_mutex_);
+  std::shared_ptr<const PointMapping> model;
+  std::uint64_t version = 0;
+  {
+    const std::lock_guard lock(mutex_);
+    model = model_;
+    version = model_version_;
+  }
+  if (!layers_.layers || layers_.model_version != version)
+    layers_ = {version, std::make_shared<const ModelLayers>(renderer_(*model))};
+  return layers_;
 }
 
 RobotPose ViewerSession::robot_pose() const {

@@ -12,6 +12,7 @@
 #include "floorgrid/mapping/mapping_factory.hpp"
 #include "floorgrid/mapping/point_mapping.hpp"
 #include "floorgrid/maps/occupancy_grid.hpp"
+#include "floorgrid/server/viewer_layers.hpp"
 
 namespace floorgrid::server {
 
@@ -47,6 +48,18 @@ struct RefitSummary {
   double seconds = 0.0;   ///< how long the fit took
 };
 
+/// A model's layers and the model version they were drawn for.
+struct VersionedLayers {
+  std::uint64_t model_version = 0;
+  std::shared_ptr<const ModelLayers> layers;  ///< null: the session draws no layers
+};
+
+/// A run replayed as the live pose (`serve --replay`).
+struct ReplayInfo {
+  std::size_t poses = 0;  ///< poses in one pass
+  double speed = 1.0;     ///< times real time
+};
+
 /// What the viewer's API serves, shared by every request thread: the mapping (swapped whole by a
 /// refit, so that a request maps every one of its points with one model) and the robot's pose.
 class ViewerSession {
@@ -60,6 +73,21 @@ class ViewerSession {
   std::shared_ptr<const PointMapping> model() const;
   /// Swaps the mapping (never null).
   void set_model(std::shared_ptr<const PointMapping> model);
+  /// The mapping's number: 1 for the first, one more at each swap (the page's cache key).
+  std::uint64_t model_version() const;
+
+  /// Sets what draws the layers (before serving; none: the session has no layers).
+  void set_layer_renderer(LayerRenderer renderer) { renderer_ = std::move(renderer); }
+  /// Whether the session draws layers.
+  bool has_layers() const { return static_cast<bool>(renderer_); }
+  /// The current model's layers, drawn on the first call after each swap (one drawing at a time;
+  /// the callers meanwhile wait for it rather than draw twice).
+  VersionedLayers layers();
+
+  /// The replay feeding the live pose, if any.
+  const std::optional<ReplayInfo>& replay() const { return replay_; }
+  /// Says that a replay feeds the live pose (before serving).
+  void set_replay(ReplayInfo replay) { replay_ = replay; }
 
   /// The latest robot pose posted (sequence 0: none yet).
   RobotPose robot_pose() const;
@@ -96,6 +124,11 @@ class ViewerSession {
   std::vector<ManualPair> manual_;
   std::uint64_t next_pair_id_ = 1;
   std::shared_ptr<const PointMapping> model_;
+  std::uint64_t model_version_ = 0;
+  LayerRenderer renderer_;
+  std::mutex layers_mutex_;  ///< one drawing at a time
+  VersionedLayers layers_;   ///< the last drawn (guarded by layers_mutex_)
+  std::optional<ReplayInfo> replay_;
   RobotPose robot_;
   std::string dataset_;
   ViewerMap plan_, grid_;

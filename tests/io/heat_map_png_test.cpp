@@ -72,6 +72,25 @@ TEST(HeatMapPng, AutomaticClipIsTheNinetyFifthPercentileRoundedUp) {
   EXPECT_DOUBLE_EQ(heat_map_clip(ramp(100, 10, 5.0), set), 0.3);
 }
 
+TEST(HeatMapPng, WithoutTheLegendThePictureIsTheRasterAlonePixelForPixel) {
+  HeatMap map = ramp(200, 120, 1.0);
+  map.values[0] = std::numeric_limits<float>::quiet_NaN();
+  HeatMapStyle style;
+  style.clip_m = 0.5;
+  const RgbaImage with = render_heat_map(map, style);
+  style.legend = false;
+  const RgbaImage without = render_heat_map(map, style);
+  ASSERT_EQ(without.width, 200);
+  ASSERT_EQ(without.height, 120);
+  // The same pixels as the map part of the picture with its legend.
+  for (int row = 0; row < 120; ++row) {
+    for (int col = 0; col < 200; col += 7) {
+      EXPECT_EQ(pixel(without, col, row), pixel(with, col, row)) << col << ", " << row;
+    }
+  }
+  EXPECT_EQ(pixel(without, 0, 119)[3], 0);
+}
+
 TEST(HeatMapPng, ValuesGoThroughViridisUnknownIsTransparentAndThePanelIsBeside) {
   HeatMap map = ramp(200, 120, 1.0);
   map.values[0] = std::numeric_limits<float>::quiet_NaN();  // cell (0, 0): bottom-left pixel

@@ -2,12 +2,14 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 #include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "floorgrid/core/error.hpp"
 #include "tests/support/test_data.hpp"
 
 namespace floorgrid::io {
@@ -56,6 +58,54 @@ TEST(ScansCsv, OneRowPerScanWithEachFiltersPoseStateAndFit) {
   EXPECT_EQ(lines[1], "0,10.5,0,0,0,global,0,,1,0,0,0,global,0,0.1250,1,1,0");
   EXPECT_EQ(lines[2],
             "1,11.25,1.5,-2,0.25,tracking,1,0.7500,1.5,3,4,-1,recovering,0,0.5000,1,0,17");
+}
+
+TEST(ScansCsv, TheGridTrackReadBackIsTheTrackingFiltersPosesAtTheirTimes) {
+  RobotLog log;
+  log.scans.resize(3);
+  log.scans[0].timestamp = 5.0;
+  log.scans[1].timestamp = 5.2;
+  log.scans[2].timestamp = std::numeric_limits<double>::quiet_NaN();  // a log without one
+  DualLocalization l;
+  l.scans.resize(3);
+  for (std::size_t i = 0; i < 3; ++i) {
+    l.scans[i].scan = i;
+    l.scans[i].grid.state = i == 0 ? FilterState::global : FilterState::tracking;
+    l.scans[i].grid.pose = {0.5 + i, -1.25 * i, 0.1 * i};
+  }
+  test::TempDir dir;
+  write_scans_csv(l, log, dir / "scans.csv");
+  const std::vector<TimedPose> track = read_grid_track(dir / "scans.csv");
+  ASSERT_EQ(track.size(), 2u);  // the global filter's mean is no pose
+  EXPECT_DOUBLE_EQ(track[0].time, 5.2);
+  EXPECT_TRUE(std::isnan(track[1].time));
+  for (std::size_t k = 0; k < 2; ++k) {
+    const Pose2& p = l.scans[k + 1].grid.pose;
+    EXPECT_DOUBLE_EQ(track[k].pose_in_grid.x, p.x);
+    EXPECT_DOUBLE_EQ(track[k].pose_in_grid.y, p.y);
+    EXPECT_DOUBLE_EQ(track[k].pose_in_grid.theta, p.theta);
+  }
+}
+
+TEST(ScansCsv, ABadTrackFileIsRefusedNamingTheFileLineAndColumn) {
+  test::TempDir dir;
+  const auto refused = [&](const std::string& text, const std::string& says) {
+    const std::filesystem::path file = dir / "scans.csv";
+    std::ofstream(file) << text;
+    try {
+      read_grid_track(file);
+      ADD_FAILURE() << "accepted: " << text;
+    } catch (const InputError& e) {
+      const std::string message =
+          std::string(e.what()) + " | line " + std::to_string(e.line()) + " | " + e.field();
+      EXPECT_NE(message.find("scans.csv"), std::string::npos) << message;
+      EXPECT_NE(message.find(says), std::string::npos) << message;
+    }
+  };
+  refused("", "empty file");
+  refused("scan,time,grid_x,grid_y,grid_state\n", "grid_theta");
+  refused("time,grid_x,grid_y,grid_theta,grid_state\n1,2,3\n", "line 2");
+  refused("time,grid_x,grid_y,grid_theta,grid_state\n1,2,x,0,tracking\n", "grid_y");
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 // while a refit swaps the model.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <filesystem>
@@ -79,9 +80,11 @@ class ViewerServerTest : public ::testing::Test {
     std::filesystem::create_directories(root_ / "web");
     std::ofstream(root_ / "web" / "index.html") << "<!doctype html><title>floorgrid</title>";
     std::ofstream(root_ / "secret.txt") << "not for the web";
+    std::filesystem::create_directories(root_ / "lib");
+    std::ofstream(root_ / "lib" / "lib.js") << "// a library";
     ServerOptions options;
     options.port = 0;
-    options.web_root = root_ / "web";
+    options.static_files = {{"/", root_ / "web"}, {"/vendor/lib/", root_ / "lib"}};
     options.limits.max_points = 1000;
     server_ = std::make_unique<ViewerServer>(session_, options);
     port_ = server_->bind();
@@ -198,8 +201,14 @@ TEST_F(ViewerServerTest, StaticFilesComeOnlyFromTheWebRoot) {
   ASSERT_TRUE(index);
   EXPECT_EQ(index->status, 200);
   EXPECT_NE(index->body.find("floorgrid"), std::string::npos);
-  for (const char* path : {"/../secret.txt", "/%2e%2e/secret.txt", "/..%2fsecret.txt",
-                           "/web/../../secret.txt", "/nothing-here.js"}) {
+  const httplib::Result library = c.Get("/vendor/lib/lib.js");
+  ASSERT_TRUE(library);
+  EXPECT_EQ(library->status, 200);
+  EXPECT_EQ(library->body, "// a library");
+  for (const char* path :
+       {"/../secret.txt", "/%2e%2e/secret.txt", "/..%2fsecret.txt", "/web/../../secret.txt",
+        "/nothing-here.js", "/vendor/lib/../../secret.txt", "/vendor/lib/%2e%2e/%2e%2e/secret.txt",
+        "/lib/lib.js"}) {
     const httplib::Result r = c.Get(path);
     ASSERT_TRUE(r) << path;
     EXPECT_GE(r->status, 400) << path;
@@ -309,6 +318,87 @@ TEST_F(ViewerServerTest, ARobotPosePostedIsTheOneServed) {
   EXPECT_DOUBLE_EQ(pose["y"].get<double>(), -2.0);
   EXPECT_DOUBLE_EQ(pose["theta"].get<double>(), 0.25);
   EXPECT_EQ(nlohmann::json::parse(c.Get("/api/info")->body)["robot_pose_sequence"], 1);
+  // On the plan: where the similarity puts the grid pose back, turned back by its angle.
+  const Eigen::Vector2d on_plan =
+      Eigen::Rotation2Dd(-kTruth.theta).toRotationMatrix() *
+      (Eigen::Vector2d(1.5, -2.0) - Eigen::Vector2d(kTruth.tx, kTruth.ty)) / kTruth.s;
+  EXPECT_NEAR(pose["plan"]["x"].get<double>(), on_plan.x(), 1e-6);
+  EXPECT_NEAR(pose["plan"]["y"].get<double>(), on_plan.y(), 1e-6);
+  EXPECT_NEAR(pose["plan"]["theta"].get<double>(), 0.25 - kTruth.theta, 1e-6);
+  EXPECT_TRUE(pose["plan"]["flag"].is_string());
+}
+
+TEST_F(ViewerServerTest, TheAlignmentsPairsAreListedOnAskingThinnedToTheLimit) {
+  ReferencePairs base;
+  base.points_in_plan.resize(2, 25'000);
+  base.points_in_grid.resize(2, 25'000);
+  for (Eigen::Index i = 0; i < base.points_in_plan.cols(); ++i) {
+    base.points_in_plan.col(i) = Eigen::Vector2d(0.001 * i, 1.0);
+    base.points_in_grid.col(i) = kTruth(base.points_in_plan.col(i));
+  }
+  session_.set_base_pairs(base);
+  httplib::Client c = client();
+  const nlohmann::json plain = nlohmann::json::parse(c.Get("/api/pairs")->body);
+  EXPECT_EQ(plain["base_pairs"], 25'000);
+  EXPECT_FALSE(plain.contains("base"));
+  const nlohmann::json listed = nlohmann::json::parse(c.Get("/api/pairs?base=1")->body);
+  ASSERT_EQ(listed["base"].size(), 20'000u);
+  // Evenly thinned: the k-th shown is pair k * n / shown, and its grid point is that pair's.
+  const nlohmann::json& shown = listed["base"][10'000];
+  EXPECT_DOUBLE_EQ(shown[0].get<double>(), 0.001 * 12'500);
+  const Eigen::Vector2d g = kTruth(Eigen::Vector2d(0.001 * 12'500, 1.0));
+  EXPECT_DOUBLE_EQ(shown[2].get<double>(), g.x());
+  EXPECT_DOUBLE_EQ(shown[3].get<double>(), g.y());
+  const httplib::Result bad = c.Get("/api/pairs?base=yes");
+  ASSERT_TRUE(bad);
+  EXPECT_EQ(bad->status, 400);
+  EXPECT_NE(bad->body.find("'base'"), std::string::npos) << bad->body;
+}
+
+TEST_F(ViewerServerTest, LayersAreDrawnOncePerModelAndAgainAfterARefit) {
+  httplib::Client c = client();
+  // Without a renderer: no layers, said so.
+  EXPECT_EQ(nlohmann::json::parse(c.Get("/api/info")->body)["layers"]["heatmap"], false);
+  EXPECT_EQ(c.Get("/api/heatmap")->status, 404);
+  EXPECT_EQ(c.Get("/api/overlay.png")->status, 404);
+
+  std::atomic<int> drawn = 0;
+  session_.set_layer_renderer([&drawn](const PointMapping& model) {
+    ++drawn;
+    ModelLayers layers;
+    layers.overlay_png = "overlay of " + model.name();
+    layers.heat.push_back({"std", "std_m", 0.5, "std of " + model.name()});
+    return layers;
+  });
+  const nlohmann::json info = nlohmann::json::parse(c.Get("/api/info")->body);
+  EXPECT_EQ(info["layers"]["overlay"], true);
+  EXPECT_EQ(info["model_version"], 1);
+  EXPECT_NE(std::find(info["models"].begin(), info["models"].end(), "tps"), info["models"].end());
+  const nlohmann::json heat = nlohmann::json::parse(c.Get("/api/heatmap")->body);
+  ASSERT_EQ(heat["layers"].size(), 1u);
+  EXPECT_EQ(heat["layers"][0]["kind"], "std");
+  EXPECT_EQ(heat["layers"][0]["clip_m"], 0.5);
+  EXPECT_EQ(heat["layers"][0]["url"], "/api/heatmap.png?kind=std&v=1");
+  EXPECT_EQ(c.Get("/api/heatmap.png?kind=std")->body, "std of gt");
+  EXPECT_EQ(c.Get("/api/overlay.png")->body, "overlay of gt");
+  const httplib::Result unknown = c.Get("/api/heatmap.png?kind=error");
+  ASSERT_TRUE(unknown);
+  EXPECT_EQ(unknown->status, 404);
+  EXPECT_NE(unknown->body.find("std"), std::string::npos) << unknown->body;
+  EXPECT_EQ(drawn, 1);  // one drawing served every request of this model
+
+  for (const Eigen::Vector2d& p : {Eigen::Vector2d(0, 0), Eigen::Vector2d(8, 0),
+                                   Eigen::Vector2d(0, 6), Eigen::Vector2d(8, 6)}) {
+    const Eigen::Vector2d g = kOtherTruth(p);
+    const nlohmann::json pair = {{"plan", {p.x(), p.y()}}, {"grid", {g.x(), g.y()}}};
+    ASSERT_EQ(c.Post("/api/pairs", pair.dump(), "application/json")->status, 201);
+  }
+  ASSERT_EQ(c.Post("/api/fit", R"({"model": "gt-affine"})", "application/json")->status, 200);
+  EXPECT_EQ(nlohmann::json::parse(c.Get("/api/info")->body)["model_version"], 2);
+  EXPECT_EQ(nlohmann::json::parse(c.Get("/api/heatmap")->body)["layers"][0]["url"],
+            "/api/heatmap.png?kind=std&v=2");
+  EXPECT_EQ(c.Get("/api/overlay.png")->body, "overlay of gt-affine");
+  EXPECT_EQ(drawn, 2);
 }
 
 TEST_F(ViewerServerTest, RequestsWhileARefitSwapsTheModelMapByOneModelEach) {
