@@ -51,24 +51,38 @@ install_bag_writers() {
     echo "install-deps: npm ci failed: the MCAP writer tests will be skipped" >&2
 }
 
-# npm packages of the report (uPlot, embedded into report.html at build time: the configure
-# fails without it) and its browser test (playwright-core; never a browser download), installed
-# once from report/package-lock.json.
-install_report_packages() {
-  local report
-  report="$(cd "$(dirname "$0")/.." && pwd)/report"
-  if [ -d "$report/node_modules/uplot" ] && [ -d "$report/node_modules/playwright-core" ]; then
-    return 0
-  fi
-  echo "install-deps: npm ci in report (uPlot for report.html, playwright-core for its test)"
-  PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD=1 npm ci --prefix "$report" --no-audit --no-fund \
-    --loglevel=error
+# npm packages of a folder with a package-lock.json, installed once (never a browser download):
+# later runs find its node_modules and need no network.
+#   install_npm_packages FOLDER WHAT PACKAGE...   (installs unless every PACKAGE is there)
+install_npm_packages() {
+  local folder package
+  folder="$(cd "$(dirname "$0")/.." && pwd)/$1"
+  local what=$2
+  shift 2
+  for package in "$@"; do
+    if [ ! -d "$folder/node_modules/$package" ]; then
+      echo "install-deps: npm ci in $folder ($what)"
+      PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD=1 npm ci --prefix "$folder" --no-audit --no-fund \
+        --loglevel=error
+      return
+    fi
+  done
+}
+
+# The report's uPlot (embedded into report.html at build time: the configure fails without it)
+# and its browser test's playwright-core; the viewer's Leaflet (served by `floorgrid serve`)
+# and its browser tests' playwright-core.
+install_page_packages() {
+  install_npm_packages report "uPlot for report.html, playwright-core for its test" \
+    uplot playwright-core
+  install_npm_packages web "Leaflet for the viewer, playwright-core for its tests" \
+    leaflet playwright-core
 }
 
 if [ ${#missing[@]} -eq 0 ]; then
   echo "install-deps: all ${#packages[@]} packages present"
   install_bag_writers
-  install_report_packages
+  install_page_packages
   exit 0
 fi
 
@@ -83,4 +97,4 @@ export DEBIAN_FRONTEND=noninteractive
 apt-get update -qq
 apt-get install -y -qq --no-install-recommends "${missing[@]}"
 install_bag_writers
-install_report_packages
+install_page_packages

@@ -14,6 +14,7 @@
 #include "floorgrid/io/pairs_csv.hpp"
 #include "floorgrid/io/system_memory.hpp"
 #include "floorgrid/io/value_json.hpp"
+#include "floorgrid/mapping/fit_with_uncertainty.hpp"
 #include "floorgrid/mapping/mapping_factory.hpp"
 #include "floorgrid/mapping/model_selection.hpp"
 
@@ -146,24 +147,12 @@ void add_fit_command(CLI::App& root) {
     const io::OutputFolder out_folder(folder.empty() ? std::filesystem::path(".") : folder);
     auto model = make_mapping(args->options);
     model->set_unit(args->unit);
-    const FitSummary s = with_file(args->pairs, [&] { return model->fit(pairs); });
+    CrossValidationOptions folds = cv;
+    folds.folds = args->cv >= 2 ? args->cv : 0;
+    const FitSummary s = with_file(
+        args->pairs, [&] { return fit_with_uncertainty(*model, args->options, pairs, folds); });
     for (const auto& w : s.warnings)
       spdlog::warn("{}", w);
-    if (args->cv >= 2) {
-      CrossValidationOptions folds = cv;
-      folds.folds = args->cv;
-      const CrossValidationResult r =
-          with_file(args->pairs, [&] { return cross_validate(args->options, pairs, folds); });
-      model->set_cv_error(r.mean_error_m, r.method);
-      // auto has its chosen model's already; the others' from their held-out errors.
-      if (model->name() != "auto") {
-        model->set_error_model(with_file(args->pairs, [&] {
-          return fit_model_error(args->options, pairs, folds, pair_noise(pairs),
-                                 folds.kind == CrossValidationKind::blocked ? &r : nullptr,
-                                 folds.kind == CrossValidationKind::runs ? &r : nullptr);
-        }));
-      }
-    }
     io::write_model(*model, args->out);
     const FitSummary& f = model->summary();
     fmt::print("model     {}\n", f.model);

@@ -206,15 +206,18 @@ ViewerServer::ViewerServer(ViewerSession& session, ServerOptions options)
                     throw RequestError(404, "no manual pair " + std::to_string(id));
                   answer_json(res, {{"deleted", id}});
                 }));
-  s.http.Post(
-      "/api/fit", guarded([&session](const httplib::Request& req, httplib::Response& res) {
-        MappingOptions fit;
-        fit.model = parse_fit_model(parse_request(req.body));
-        const RefitSummary r = session.refit(fit);
-        answer_json(
-            res,
-            {{"model", r.model}, {"pairs", r.pairs}, {"rms_m", r.rms_m}, {"seconds", r.seconds}});
-      }));
+  s.http.Post("/api/fit", guarded([&session](const httplib::Request& req, httplib::Response& res) {
+                MappingOptions fit;
+                fit.model = parse_fit_model(parse_request(req.body));
+                const RefitSummary r = session.refit(fit);
+                answer_json(res, {{"model", r.model},
+                                  {"pairs", r.pairs},
+                                  {"rms_m", r.rms_m},
+                                  {"cv_error_m", r.cv_error_m ? nlohmann::json(*r.cv_error_m)
+                                                              : nlohmann::json(nullptr)},
+                                  {"has_std_m", r.has_std},
+                                  {"seconds", r.seconds}});
+              }));
   s.http.Get("/api/overlay.png",
              guarded([&session](const httplib::Request&, httplib::Response& res) {
                const VersionedLayers layers = session_layers(session);

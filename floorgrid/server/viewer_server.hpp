@@ -44,7 +44,8 @@ struct ServerOptions {
 ///                          ?base=1 adds "base": [[plan x, y, grid x, y]] (at most 20,000)
 ///   POST /api/pairs        {"plan": [x, y], "grid": [x, y]} -> 201 {"id"}
 ///   DELETE /api/pairs/ID   {"deleted"}, 404 when there is no such pair
-///   POST /api/fit          {"model"} -> {"model", "pairs", "rms_m", "seconds"}: fitted to the
+///   POST /api/fit          {"model"} -> {"model", "pairs", "rms_m", "cv_error_m", "has_std_m",
+///                          "seconds"}: fitted (and cross-validated) to the
 ///                          alignment's and the manual pairs, then swapped in
 ///   GET  /api/overlay.png  the plan's walls through the model on the gridmap's pixels
 ///   GET  /api/heatmap      {"model_version", "model", "seconds", "layers": [{"kind",

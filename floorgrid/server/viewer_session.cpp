@@ -7,6 +7,7 @@
 
 #include "floorgrid/io/image_io.hpp"
 #include "floorgrid/io/map_io.hpp"
+#include "floorgrid/mapping/fit_with_uncertainty.hpp"
 
 namespace floorgrid::server {
 
@@ -106,10 +107,15 @@ RefitSummary ViewerSession::refit(const MappingOptions& options) {
   }
   const auto start = std::chrono::steady_clock::now();
   std::shared_ptr<PointMapping> model = make_mapping(options);
-  model->fit(pairs);
-  RefitSummary summary{
-      model->name(), static_cast<std::size_t>(n), model->summary().rms_m,
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()};
+  // As align and fit make it: with its cross-validated error and its std_m.
+  fit_with_uncertainty(*model, options, pairs, options.auto_select.cv);
+  RefitSummary summary;
+  summary.model = model->name();
+  summary.pairs = static_cast<std::size_t>(n);
+  summary.rms_m = model->summary().rms_m;
+  summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  summary.cv_error_m = model->summary().cv_error_m;
+  summary.has_std = model->error_model().has_value();
   set_model(std::move(model));
   return summary;
 }

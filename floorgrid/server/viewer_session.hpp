@@ -45,7 +45,9 @@ struct RefitSummary {
   std::string model;      ///< the model fitted
   std::size_t pairs = 0;  ///< pairs it was fitted to (the alignment's and the manual ones)
   double rms_m = 0.0;     ///< its rms residual at them
-  double seconds = 0.0;   ///< how long the fit took
+  double seconds = 0.0;   ///< how long the fit took (with its cross-validation)
+  std::optional<double> cv_error_m;  ///< its cross-validated mean error (none: too few pairs)
+  bool has_std = false;              ///< whether it states std_m (an error model was fitted)
 };
 
 /// A model's layers and the model version they were drawn for.
@@ -105,9 +107,10 @@ class ViewerSession {
                          const Eigen::Vector2d& point_in_grid);
   /// Deletes manual pair `id`; false when there is none.
   bool delete_pair(std::uint64_t id);
-  /// Fits `options.model` to the alignment's and the manual pairs and swaps it in when the fit
-  /// succeeds (one refit at a time; requests meanwhile map with the model before). InputError
-  /// from the fit (too few pairs, an unknown model) leaves the model as it was.
+  /// Fits `options.model` to the alignment's and the manual pairs, with its cross-validated
+  /// error and std_m (options.auto_select.cv's folds), and swaps it in when the fit succeeds (one
+  /// refit at a time; requests meanwhile map with the model before). InputError from the fit (too
+  /// few pairs, an unknown model) leaves the model as it was.
   RefitSummary refit(const MappingOptions& options);
 
   /// What the session came from (the dataset's name).

@@ -355,6 +355,35 @@ TEST_F(ViewerServerTest, TheAlignmentsPairsAreListedOnAskingThinnedToTheLimit) {
   EXPECT_NE(bad->body.find("'base'"), std::string::npos) << bad->body;
 }
 
+TEST_F(ViewerServerTest, ARefitStatesItsCrossValidatedErrorAndStdAsFitDoes) {
+  // 400 pairs of the other similarity over 20 x 20 m, each off by up to 5 cm.
+  ReferencePairs base;
+  base.points_in_plan.resize(2, 400);
+  base.points_in_grid.resize(2, 400);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> noise(-0.05, 0.05);
+  for (Eigen::Index i = 0; i < 400; ++i) {
+    base.points_in_plan.col(i) = Eigen::Vector2d(i % 20, i / 20);
+    base.points_in_grid.col(i) =
+        kOtherTruth(base.points_in_plan.col(i)) + Eigen::Vector2d(noise(rng), noise(rng));
+  }
+  session_.set_base_pairs(base);
+  httplib::Client c = client();
+  const httplib::Result fit = c.Post("/api/fit", R"({"model": "gt"})", "application/json");
+  ASSERT_TRUE(fit);
+  ASSERT_EQ(fit->status, 200) << fit->body;
+  const nlohmann::json summary = nlohmann::json::parse(fit->body);
+  EXPECT_EQ(summary["has_std_m"], true);
+  // The held-out error of a similarity fitted to pairs off by at most 5 cm.
+  EXPECT_GT(summary["cv_error_m"].get<double>(), 0.0);
+  EXPECT_LT(summary["cv_error_m"].get<double>(), 0.07);
+  const auto [status, answer] = post_map(R"({"from": "plan", "points": [[10.0, 10.0]]})");
+  ASSERT_EQ(status, 200);
+  ASSERT_TRUE(answer["points"][0]["std_m"].is_number()) << answer.dump();
+  EXPECT_GT(answer["points"][0]["std_m"].get<double>(), 0.0);
+  EXPECT_LT(answer["points"][0]["std_m"].get<double>(), 0.1);
+}
+
 TEST_F(ViewerServerTest, LayersAreDrawnOncePerModelAndAgainAfterARefit) {
   httplib::Client c = client();
   // Without a renderer: no layers, said so.

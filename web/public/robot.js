@@ -1,0 +1,105 @@
+// The live robot pose: GET /api/robot_pose about 4 times a second, redrawn on both maps
+// when its sequence number changes (gridmap pose as sent, floorplan pose as the model maps it).
+import { degrees, fixed } from './geometry.js';
+import { poseIcon, toLatLng } from './maps.js';
+
+const L = window.L;
+const POLL_MS = 225;
+
+export class RobotFeed {
+  constructor({ views, api, status, state, linked }) {
+    this.views = views;
+    this.api = api;
+    this.status = status;
+    this.state = state;
+    this.linked = linked;
+    this.sequence = 0;
+    this.busy = false;
+    this.failing = false;
+    this.markers = { plan: null, grid: null };
+    this.follow = document.getElementById('follow-robot');
+    this.text = document.getElementById('robot-text');
+    this.follow.addEventListener('change', () => { if (this.follow.checked) this.panTo(); });
+  }
+
+  showReplay(replay) {
+    const badge = document.getElementById('robot-replay');
+    badge.hidden = !replay;
+    if (replay) badge.textContent = `replay · ${replay.poses} poses · ${replay.speed}×`;
+  }
+
+  start() {
+    this.timer = setInterval(() => this.poll(false), POLL_MS);
+    return this.poll(false);
+  }
+
+  /// Redraws even when the sequence did not change (the model changed).
+  refresh() {
+    return this.poll(true);
+  }
+
+  async poll(force) {
+    if (this.busy) return;
+    this.busy = true;
+    try {
+      const pose = await this.api.robotPose();
+      if (this.failing) this.status('robot pose feed back', 'info');
+      this.failing = false;
+      if (pose.sequence && (force || pose.sequence !== this.sequence)) {
+        this.sequence = pose.sequence;
+        // Older servers send no "plan": ask the model ourselves.
+        const plan = pose.plan || await this.mapToPlan(pose);
+        this.draw(pose, plan);
+      }
+    } catch (error) {
+      if (!this.failing) this.status(`robot pose: ${error.message}`, 'error');
+      this.failing = true;
+    } finally {
+      this.busy = false;
+    }
+  }
+
+  async mapToPlan(pose) {
+    const answer = await this.api.map('grid', [[pose.x, pose.y, pose.theta]]);
+    return answer.points[0];
+  }
+
+  place(name, at, theta) {
+    const icon = poseIcon('robot', theta, { arrow: 16 });
+    if (!at) {
+      if (this.markers[name]) this.markers[name].remove();
+      this.markers[name] = null;
+      return;
+    }
+    if (this.markers[name]) {
+      this.markers[name].setLatLng(at).setIcon(icon);
+    } else {
+      this.markers[name] = L.marker(at, { icon, interactive: false, keyboard: false, zIndexOffset: 800 })
+        .addTo(this.views[name].map);
+    }
+  }
+
+  draw(pose, plan) {
+    const grid = L.latLng(pose.y, pose.x);
+    const planAt = plan && plan.x !== null && plan.x !== undefined ? toLatLng(plan) : null;
+    const planTheta = plan && typeof plan.theta === 'number' ? plan.theta : null;
+    this.place('grid', grid, pose.theta);
+    this.place('plan', planAt, planTheta);
+    this.state.robot = { sequence: pose.sequence, grid, plan: planAt, theta: pose.theta, planTheta };
+    const std = plan && typeof plan.std_m === 'number' ? ` · std ${fixed(plan.std_m, 3)} m` : '';
+    const flag = plan && plan.flag && plan.flag !== 'ok' ? ` · ${plan.flag}` : '';
+    this.text.innerHTML =
+      `<span class="k">grid</span> <span class="num">${fixed(pose.x, 2)}, ${fixed(pose.y, 2)}, ${fixed(degrees(pose.theta), 0)}°</span><br>` +
+      `<span class="k">plan</span> <span class="num">${planAt ? `${fixed(plan.x, 2)}, ${fixed(plan.y, 2)}` : 'does not map'}` +
+      `${planTheta !== null ? `, ${fixed(degrees(planTheta), 0)}°` : ''}</span>${std}${flag}` +
+      ` <span class="muted">#${pose.sequence}</span>`;
+    if (this.follow.checked) this.panTo();
+  }
+
+  panTo() {
+    const robot = this.state.robot;
+    if (!robot) return;
+    this.linked.setViewQuietly('grid', robot.grid);
+    if (robot.plan) this.linked.setViewQuietly('plan', robot.plan);
+  }
+}

@@ -1,0 +1,104 @@
+// floorgrid viewer: the floorplan and the robot's gridmap side by side. A click on either map
+// is mapped to the other by the server's model; the gridmap pose is the robot's goal.
+// window.floorgridViewer = {ready, plan, grid, state} is the browser tests' hook.
+import { api } from './api.js';
+import { GoalTool } from './goal.js';
+import { HeatMap, WallOverlay } from './layers.js';
+import { createMapView, LinkedViews } from './maps.js';
+import { PairsPanel } from './pairs.js';
+import { RobotFeed } from './robot.js';
+
+const statusLine = document.getElementById('status');
+
+/// The header's status line: kind 'info', 'prompt', 'warn' or 'error'.
+function status(message, kind = 'info') {
+  statusLine.textContent = message;
+  statusLine.className = `status status-${kind}`;
+  statusLine.title = message;
+}
+
+function showInfo(info) {
+  document.getElementById('dataset-name').textContent = info.dataset;
+  document.getElementById('model-name').textContent = info.model;
+  document.title = `${info.dataset} · floorgrid viewer`;
+}
+
+/// Copy buttons: data-copy names the element whose text goes to the clipboard.
+function wireCopyButtons() {
+  for (const button of document.querySelectorAll('button[data-copy]')) {
+    button.addEventListener('click', async () => {
+      const source = document.getElementById(button.dataset.copy);
+      try {
+        // A browser that asks for permission may never settle: fall back after a second.
+        const timeout = new Promise((_, reject) => setTimeout(() => reject(new Error('timeout')), 1000));
+        await Promise.race([navigator.clipboard.writeText(source.textContent), timeout]);
+        status('copied to the clipboard', 'info');
+      } catch {
+        // No clipboard (plain http on another host): select the text for Ctrl-C.
+        const range = document.createRange();
+        range.selectNodeContents(source);
+        const selection = window.getSelection();
+        selection.removeAllRanges();
+        selection.addRange(range);
+        status('the clipboard is not available here: the text is selected, press Ctrl-C', 'warn');
+      }
+    });
+  }
+}
+
+async function start(hook) {
+  const info = await api.info();
+  hook.info = info;
+  showInfo(info);
+  const views = {
+    plan: createMapView('plan-map', 'plan', info.plan, '/api/maps/plan.png'),
+    grid: createMapView('grid-map', 'grid', info.grid, '/api/maps/grid.png'),
+  };
+  hook.plan = views.plan.map;
+  hook.grid = views.grid.map;
+  const state = hook.state;
+
+  const linkBox = document.getElementById('linked-views');
+  const linked = new LinkedViews(views, api, { enabled: () => linkBox.checked, onError: status });
+  linkBox.addEventListener('change', () => { if (linkBox.checked) linked.follow('plan', 'grid'); });
+
+  const goal = new GoalTool({ views, api, status, state });
+  const robot = new RobotFeed({ views, api, status, state, linked });
+  const overlay = new WallOverlay({ views, status });
+  const heatmap = new HeatMap({ views, api, status });
+  const pairs = new PairsPanel({
+    views, api, status, state,
+    onRefit: async () => {
+      const fresh = await api.info();
+      hook.info = fresh;
+      showInfo(fresh);
+      pairs.setInfo(fresh);
+      overlay.setInfo(fresh);
+      await Promise.all([heatmap.setInfo(fresh), goal.refresh(), robot.refresh()]);
+    },
+  });
+  hook.goal = goal;
+
+  for (const name of ['plan', 'grid']) {
+    views[name].map.on('click', (event) => {
+      if (!pairs.handleClick(name, event.latlng)) goal.pick(name, event.latlng);
+    });
+  }
+  wireCopyButtons();
+  pairs.setInfo(info);
+  overlay.setInfo(info);
+  robot.showReplay(info.replay);
+  await Promise.all([views.plan.loaded, views.grid.loaded, pairs.loadManual(), robot.start(),
+                     heatmap.setInfo(info)]);
+  status('Click either map to set a goal; drag the orange handle to turn it.', 'info');
+}
+
+const hook = { ready: null, isReady: false, plan: null, grid: null, state: {} };
+window.floorgridViewer = hook;
+hook.ready = start(hook).then(
+  () => { hook.isReady = true; },
+  (error) => {
+    status(`the viewer could not start: ${error.message}`, 'error');
+    throw error;
+  },
+);
