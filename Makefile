@@ -33,6 +33,7 @@ demo: build
 	  ./$(BUILD_DIR)/floorgrid info $(DATA)/bonn/GMap/GMap.yaml; \
 	else echo "demo: $(DATA) is missing: no real files to show"; fi
 	@echo "demo: results in $(DEMO_OUT)/align (report.html, metrics.json, model.json, overlays/)"
+	@echo "demo: browse them: ./$(BUILD_DIR)/floorgrid serve $(DEMO_OUT)/align --replay, then open http://127.0.0.1:8080/"
 
 test: build
 	ctest --test-dir $(BUILD_DIR) --output-on-failure -j $(JOBS)

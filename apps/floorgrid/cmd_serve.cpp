@@ -135,11 +135,13 @@ void add_serve_command(CLI::App& root) {
   cmd->add_option("--port", args->port, "port to listen on (0: any free one)")
       ->check(CLI::Range(0, 65535));
   cmd->add_option("--web", args->web, "folder of the viewer's page (default: the source's web/)");
-  cmd->add_flag("--replay", args->replay,
-                "feed the run's gridmap poses (the align folder's scans.csv), mapped to the plan, "
-                "as the live robot pose, over and over");
+  auto* replay_flag = cmd->add_flag(
+      "--replay", args->replay,
+      "feed the run's gridmap poses (the align folder's scans.csv), mapped to the plan, "
+      "as the live robot pose, over and over");
   cmd->add_option("--speed", args->speed, "replay speed, times real time (default 1)")
-      ->check(CLI::Range(0.01, 1000.0));
+      ->check(CLI::Range(0.01, 1000.0))
+      ->needs(replay_flag);
   cmd->callback([args] {
     const ServedFiles files = served_files(args->target, args->dataset, args->model);
     std::vector<io::TimedPose> track;

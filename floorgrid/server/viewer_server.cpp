@@ -39,17 +39,23 @@ nlohmann::json robot_on_plan(const PointMapping& model, const Pose2& pose_in_gri
   const MappedPoint m = model.map_inverse(pose_in_grid.translation());
   const std::optional<Pose2> pose =
       m.flag == MapFlag::not_invertible ? std::nullopt : model.inverse_pose(pose_in_grid);
-  if (!pose)
+  const bool extrapolated = m.flag == MapFlag::extrapolated || m.flag == MapFlag::outside_hull;
+  if (!pose) {
     return {{"x", nullptr},
             {"y", nullptr},
             {"theta", nullptr},
             {"std_m", nullptr},
-            {"flag", to_string(MapFlag::not_invertible)}};
+            {"nearest_pair_m", m.nearest_pair_m},
+            {"flag", to_string(MapFlag::not_invertible)},
+            {"extrapolated", false}};
+  }
   return {{"x", pose->x},
           {"y", pose->y},
           {"theta", pose->theta},
           {"std_m", m.std_m ? nlohmann::json(*m.std_m) : nlohmann::json(nullptr)},
-          {"flag", to_string(m.flag)}};
+          {"nearest_pair_m", m.nearest_pair_m},
+          {"flag", to_string(m.flag)},
+          {"extrapolated", extrapolated}};
 }
 
 /// At most this many of the alignment's pairs go to the page (evenly thinned).
@@ -122,7 +128,16 @@ ViewerServer::ViewerServer(ViewerSession& session, ServerOptions options)
   s.http.set_error_handler([](const httplib::Request& req, httplib::Response& res) {
     if (!res.body.empty())
       return;  // a handler's own answer
-    const std::string message = res.status == 413   ? "the request body is too large"
+    // cpp-httplib parses a form-encoded body itself and refuses one over 8 KiB (compiled in):
+    // the JSON API's usual mistake (curl -d without a Content-Type), said so.
+    const bool form =
+        req.get_header_value("Content-Type").starts_with("application/x-www-form-urlencoded");
+    const std::string message = res.status == 413 && form
+                                    ? "a body sent as application/x-www-form-urlencoded is "
+                                      "limited to 8 KiB: send JSON with Content-Type: "
+                                      "application/json (curl -H 'Content-Type: "
+                                      "application/json' -d @points.json)"
+                                : res.status == 413 ? "the request body is too large"
                                 : res.status == 404 ? "no such path: " + req.path
                                                     : "bad request";
     answer_error(res, res.status, message);

@@ -38,7 +38,8 @@ struct ServerOptions {
 ///   GET  /api/maps/plan.png, /api/maps/grid.png   the maps' pictures (info's bounds)
 ///   POST /api/map          see map_points
 ///   GET  /api/robot_pose   {"sequence", "x", "y", "theta", "plan": {"x", "y", "theta",
-///                          "std_m", "flag"}} (sequence 0: none yet, and no pose)
+///                          "std_m", "nearest_pair_m", "flag", "extrapolated"}} (sequence 0:
+///                          none yet, and no pose)
 ///   POST /api/robot_pose   {"x", "y", "theta"} in the grid frame -> {"sequence"}
 ///   GET  /api/pairs        {"pairs": [{"id", "plan", "grid"}], "base_pairs"}: the manual ones;
 ///                          ?base=1 adds "base": [[plan x, y, grid x, y]] (at most 20,000)

@@ -46,6 +46,13 @@ TEST(ServeCommand, EveryMistakeNamesTheOptionAndListensNowhere) {
        "given twice"},
       {quoted(root / "align") + " --dataset " + quoted(root / "dataset") + " --port 70000",
        "--port"},
+      // --replay needs the run's track, which an align folder from the maps alone lacks.
+      {quoted(root / "align") + " --dataset " + quoted(root / "dataset") + " --replay",
+       "scans.csv"},
+      {quoted(root / "align") + " --dataset " + quoted(root / "dataset") + " --speed 2",
+       "--replay"},
+      {quoted(root / "align") + " --dataset " + quoted(root / "dataset") + " --replay --speed 0",
+       "--speed"},
   };
   for (const auto& c : cases) {
     const CommandResult r = run_floorgrid("serve " + c.args);

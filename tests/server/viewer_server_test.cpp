@@ -191,6 +191,19 @@ TEST_F(ViewerServerTest, TooManyPointsOrTooLargeABodyGet413) {
   const auto [huge_status, huge_answer] = post_map(huge);
   EXPECT_EQ(huge_status, 413) << huge_answer.dump();
 
+  // A JSON body sent as a form (curl -d's default) over the HTTP library's form limit: told
+  // how to send it.
+  std::string points = R"({"from": "plan", "points": [)";
+  for (int i = 0; i < 900; ++i)
+    points += i ? ",[1.25,2.5]" : "[1.25,2.5]";
+  points += "]}";
+  httplib::Client c = client();
+  const httplib::Result form = c.Post("/api/map", points, "application/x-www-form-urlencoded");
+  ASSERT_TRUE(form);
+  EXPECT_EQ(form->status, 413);
+  EXPECT_NE(form->body.find("Content-Type: application/json"), std::string::npos) << form->body;
+  EXPECT_EQ(c.Post("/api/map", points, "application/json")->status, 200);
+
   // The server still answers.
   EXPECT_EQ(post_map(R"({"from": "plan", "points": [[1, 2]]})").first, 200);
 }
@@ -326,6 +339,8 @@ TEST_F(ViewerServerTest, ARobotPosePostedIsTheOneServed) {
   EXPECT_NEAR(pose["plan"]["y"].get<double>(), on_plan.y(), 1e-6);
   EXPECT_NEAR(pose["plan"]["theta"].get<double>(), 0.25 - kTruth.theta, 1e-6);
   EXPECT_TRUE(pose["plan"]["flag"].is_string());
+  EXPECT_TRUE(pose["plan"]["nearest_pair_m"].is_number());
+  EXPECT_TRUE(pose["plan"]["extrapolated"].is_boolean());
 }
 
 TEST_F(ViewerServerTest, TheAlignmentsPairsAreListedOnAskingThinnedToTheLimit) {
