@@ -5,7 +5,7 @@ files in ../shared/data when it is there, and the model files of tests/fixtures/
 
 Usage: fuzz/make_corpus.py OUT_DIR [DATA_DIR]
 Writes OUT_DIR/<target>/ for dxf, image, map_yaml, carmen, pairs_csv, points_csv, model_json,
-dataset_yaml, ros_messages, ros1_bag, mcap. Every seed is at most MAX_SEED bytes (the
+dataset_yaml, ros_messages, ros1_bag, mcap, scans_csv, viewer_request. Every seed is at most MAX_SEED bytes (the
 fuzzers run with -max_len of that size).
 """
 import gzip
@@ -346,6 +346,27 @@ def mcap_seeds(out: Path) -> None:
     put(out, "mcap", "fr079_small_head.mcap", (ROOT / "tests/bags/fr079_small.mcap").read_bytes())
 
 
+# ---- scans.csv (serve --replay) and the viewer's request bodies ----
+SCANS = {
+    "written": "scan,time,plan_x,plan_y,plan_theta,plan_state,plan_converged,plan_fit,"
+               "plan_scale,grid_x,grid_y,grid_theta,grid_state,grid_converged,grid_fit,"
+               "grid_scale,consistent,pairs\n"
+               "0,1000,1.2,9.5,-0.37,tracking,0,0.7930,0.99,0.04,-2.01,-2.83,tracking,0,0.9768,1,1,0\n"
+               "1,nan,1.3,9.5,-0.36,global,0,,1,-0.08,-2.04,-2.82,global,0,,1,0,0\n"
+               "2,1000.4,1.4,9.4,-0.35,tracking,1,0.8,1,-0.1,-2.1,-2.8,tracking,1,0.9,1,1,12\n",
+    "columns-moved": "grid_state,grid_theta,grid_y,grid_x,time\ntracking,0.5,2,1,3.25\n",
+}
+REQUESTS = {
+    "map-plan": '{"from": "plan", "points": [[1, 2], [3.5, -4, 0.25]], "model": "gt"}',
+    "map-grid": '{"from": "grid", "points": [[2, 2, 1e300], [-1e7, 1e7]]}',
+    "map-bad": '{"from": "plan", "points": [[1], [1, 2, 3, 4], ["x", 2], [NaN, 1]]}',
+    "pair": '{"plan": [1.5, 2], "grid": [3, -4.25]}',
+    "pose": '{"x": 1.5, "y": -2.0, "theta": 0.25}',
+    "fit": '{"model": "tps"}',
+    "nested": '{"from": "plan", "points": [[[[[[[1, 2]]]]]]], "x": {"y": [1, {"z": null}]}}',
+}
+
+
 def main() -> None:
     out = Path(sys.argv[1])
     data = Path(sys.argv[2]) if len(sys.argv) > 2 else ROOT.parent / "shared" / "data"
@@ -372,6 +393,10 @@ def main() -> None:
     put(out, "ros1_bag", "fr079_5scans_lz4.bag",
         (ROOT / "tests" / "bags" / "fr079_5scans_lz4.bag").read_bytes())
     mcap_seeds(out)
+    for name, text in SCANS.items():
+        put(out, "scans_csv", name + ".csv", text)
+    for name, text in REQUESTS.items():
+        put(out, "viewer_request", name + ".json", text)
     for model in sorted((ROOT / "tests" / "fixtures" / "models").glob("*.json")):
         put(out, "model_json", model.name, compact_model(model))
     if data.is_dir():

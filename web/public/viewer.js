@@ -91,6 +91,15 @@ async function start(hook) {
   await Promise.all([views.plan.loaded, views.grid.loaded, pairs.loadManual(), robot.start(),
                      heatmap.setInfo(info)]);
   status('Click either map to set a goal; drag the orange handle to turn it.', 'info');
+  // A map origin with a yaw (rare: map_server and most of ROS ignore it) turns the map in its
+  // frame; Leaflet draws pictures unturned, so the picture would not lie under its cells.
+  for (const [name, layout] of [['floorplan', info.plan], ['gridmap', info.grid]]) {
+    if (layout.origin[2] !== 0) {
+      status(`the ${name}'s origin has a yaw of ${(layout.origin[2] * 180 / Math.PI).toFixed(1)}°: ` +
+             'its picture is drawn unturned, so what you click on it is off (the API is exact)',
+             'warn');
+    }
+  }
 }
 
 const hook = { ready: null, isReady: false, plan: null, grid: null, state: {} };
