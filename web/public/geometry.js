@@ -1,4 +1,4 @@
-// Small pure helpers: angles, the mapping's local Jacobian and the goal's ROS 2 text.
+// Small pure helpers: angles, turns, the mapping's local Jacobian and the goal's ROS 2 text.
 
 /// Wraps an angle to (-pi, pi].
 export function wrapAngle(theta) {
@@ -16,6 +16,31 @@ export function fixed(value, decimals) {
   const text = value.toFixed(decimals);
   return /^-0\.?0*$/.test(text) ? text.slice(1) : text;
 }
+
+/// The point {x, y} turned by `angle` (radians, counterclockwise) about `centre`; `p` itself
+/// when the angle is 0 (so an unturned frame gives back exactly what it was given).
+export function rotateAbout(p, centre, angle) {
+  if (angle === 0) return { x: p.x, y: p.y };
+  const c = Math.cos(angle);
+  const s = Math.sin(angle);
+  const dx = p.x - centre.x;
+  const dy = p.y - centre.y;
+  return { x: centre.x + c * dx - s * dy, y: centre.y + s * dx + c * dy };
+}
+
+/// The axis-aligned box [[xmin, ymin], [xmax, ymax]] around `bounds` turned by `angle` about
+/// `centre`.
+export function turnedBox(bounds, centre, angle) {
+  const [[xmin, ymin], [xmax, ymax]] = bounds;
+  const corners = [[xmin, ymin], [xmax, ymin], [xmax, ymax], [xmin, ymax]]
+    .map(([x, y]) => rotateAbout({ x, y }, centre, angle));
+  const xs = corners.map((p) => p.x);
+  const ys = corners.map((p) => p.y);
+  return [[Math.min(...xs), Math.min(...ys)], [Math.max(...xs), Math.max(...ys)]];
+}
+
+/// Determinant of a 2x2 matrix [[a, b], [c, d]] (negative: the mapping mirrors).
+export const determinant = (J) => J[0][0] * J[1][1] - J[0][1] * J[1][0];
 
 const mapped = (p) => p && p.x !== null && p.y !== null && p.x !== undefined && p.y !== undefined;
 
@@ -37,7 +62,7 @@ export function localScale(J) {
 /// Polygon [[x, y], ...] around `centre` that the mapping sends onto a circle of `radius`
 /// around the image point: centre + J^-1 * radius * (cos t, sin t). Null when J is singular.
 export function preimageEllipse(centre, J, radius, vertices = 64) {
-  const det = J[0][0] * J[1][1] - J[0][1] * J[1][0];
+  const det = determinant(J);
   if (!Number.isFinite(det) || Math.abs(det) < 1e-9) return null;
   const inv = [[J[1][1] / det, -J[0][1] / det], [-J[1][0] / det, J[0][0] / det]];
   const points = [];

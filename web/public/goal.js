@@ -1,10 +1,12 @@
 // The goal: a click on either map, mapped to the other one with its uncertainty, a heading
-// handle to turn it, and the panel with the gridmap pose to send to the robot.
+// handle to turn it, and the panel with the gridmap pose to send to the robot. The goal and
+// the answer are kept in the maps' own frames; each view's toLatLng / toDisplayAngle draws them
+// (the gridmap may be drawn turned like the plan).
 import {
   degrees, fixed, jacobianFromSteps, poseStampedYaml, preimageEllipse, ros2GoalCommand,
   wrapAngle, yawQuaternion,
 } from './geometry.js';
-import { metresForPixels, poseIcon, toLatLng } from './maps.js';
+import { metresForPixels, poseIcon } from './maps.js';
 
 const L = window.L;
 const ARROW_PX = 40;        // the heading arrow's length on screen
@@ -41,10 +43,11 @@ export class GoalTool {
     };
   }
 
-  /// A new goal at `latlng` on map `from`, heading 0 in that map's frame.
+  /// A new goal at `latlng` on map `from` (the heading kept from the last goal on that map).
   pick(from, latlng) {
-    this.goal = { from, x: latlng.lng, y: latlng.lat, theta: this.goal?.from === from ? this.goal.theta : 0 };
-    this.state.click = { from, latlng: L.latLng(latlng.lat, latlng.lng) };
+    const p = this.views[from].fromLatLng(latlng);
+    this.goal = { from, x: p.x, y: p.y, theta: this.goal?.from === from ? this.goal.theta : 0 };
+    this.state.click = { from, latlng: L.latLng(latlng.lat, latlng.lng), point: p };
     this.state.mapped = null;
     this.drawClicked();
     return this.remap(true);
@@ -53,6 +56,13 @@ export class GoalTool {
   /// The same goal mapped again (after a refit).
   refresh() {
     return this.goal ? this.remap(true) : Promise.resolve();
+  }
+
+  /// Draws the goal again (a view's frame changed).
+  redraw() {
+    if (!this.goal) return;
+    this.drawClicked();
+    if (this.answer) this.drawMapped();
   }
 
   /// Queues a POST /api/map of the goal; a drag sends one request at a time, the latest last.
@@ -92,10 +102,16 @@ export class GoalTool {
     this.running = false;
   }
 
+  /// The heading handle's place: the arrow's tip (turns keep lengths: metres are the view's).
   tip() {
-    const map = this.views[this.goal.from].map;
-    const length = metresForPixels(map, ARROW_PX);
-    return L.latLng(this.goal.y + length * Math.sin(this.goal.theta), this.goal.x + length * Math.cos(this.goal.theta));
+    const view = this.views[this.goal.from];
+    const length = metresForPixels(view.map, ARROW_PX);
+    const { x, y, theta } = this.goal;
+    return view.toLatLng({ x: x + length * Math.cos(theta), y: y + length * Math.sin(theta) });
+  }
+
+  clickedIcon() {
+    return poseIcon('goal-clicked', this.views[this.goal.from].toDisplayAngle(this.goal.theta), { arrow: ARROW_PX });
   }
 
   placeHandle() {
@@ -106,9 +122,8 @@ export class GoalTool {
   drawClicked() {
     for (const layer of Object.values(this.layers)) layer.clearLayers();
     const { from } = this.goal;
-    const at = L.latLng(this.goal.y, this.goal.x);
-    this.clicked = L.marker(at, { icon: poseIcon('goal-clicked', this.goal.theta, { arrow: ARROW_PX }),
-                                  interactive: false, keyboard: false, zIndexOffset: 500 });
+    this.clicked = L.marker(this.views[from].toLatLng(this.goal), {
+      icon: this.clickedIcon(), interactive: false, keyboard: false, zIndexOffset: 500 });
     this.handle = L.marker(this.tip(), {
       icon: L.divIcon({ className: 'fg-handle', iconSize: [14, 14], iconAnchor: [7, 7] }),
       draggable: true, keyboard: false, zIndexOffset: 1000, title: 'drag to set the heading',
@@ -124,12 +139,14 @@ export class GoalTool {
     this.state.handle = this.handle.getLatLng();
   }
 
+  /// Heads the goal at the handle's `latlng` (the heading in the clicked map's own frame).
   turnTowards(latlng) {
-    const dx = latlng.lng - this.goal.x;
-    const dy = latlng.lat - this.goal.y;
+    const p = this.views[this.goal.from].fromLatLng(latlng);
+    const dx = p.x - this.goal.x;
+    const dy = p.y - this.goal.y;
     if (Math.hypot(dx, dy) === 0) return;
     this.goal.theta = Math.atan2(dy, dx);
-    this.clicked.setIcon(poseIcon('goal-clicked', this.goal.theta, { arrow: ARROW_PX }));
+    this.clicked.setIcon(this.clickedIcon());
     this.remap(false);
   }
 
@@ -147,7 +164,7 @@ export class GoalTool {
       return;
     }
     const extrapolated = m.extrapolated ? 'fg-extrapolated' : '';
-    const target = toLatLng(m);
+    const target = this.views[to].toLatLng(m);
     const hasStd = typeof m.std_m === 'number';
     const radius = hasStd ? m.std_m : m.nearest_pair_m;
     if (typeof radius === 'number' && radius > 0) {
@@ -160,14 +177,16 @@ export class GoalTool {
       }
       this.layers[to].addLayer(circle);
       const ellipse = this.J && preimageEllipse(this.goal, this.J, radius);
-      if (ellipse) this.layers[from].addLayer(L.polygon(ellipse.map(([x, y]) => [y, x]), style));
+      if (ellipse) this.layers[from].addLayer(L.polygon(ellipse.map((p) => this.views[from].toLatLng(p)), style));
     }
     const theta = typeof m.theta === 'number' ? m.theta : null;
     this.layers[to].addLayer(L.marker(target, {
-      icon: poseIcon('goal-mapped', theta, { arrow: ARROW_PX, extra: extrapolated }),
+      icon: poseIcon('goal-mapped', theta === null ? null : this.views[to].toDisplayAngle(theta),
+                     { arrow: ARROW_PX, extra: extrapolated }),
       interactive: false, keyboard: false, zIndexOffset: 500,
     }));
-    this.state.mapped = { to, latlng: target, theta };
+    // latlng: where it is drawn; point and theta: in the target map's own frame.
+    this.state.mapped = { to, latlng: target, point: { x: m.x, y: m.y }, theta };
   }
 
   renderPanel(sent) {

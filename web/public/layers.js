@@ -1,5 +1,6 @@
 // Picture layers the server computes from the current model: the plan's walls warped onto the
 // gridmap (/api/overlay.png) and the uncertainty/error heat map on the floorplan (/api/heatmap).
+// Each is a view's Picture: drawn in the view's frame (turned with the gridmap), above its map.
 import { fixed } from './geometry.js';
 
 const L = window.L;
@@ -10,11 +11,11 @@ const QUANTITY_NAMES = {
   error_m: 'error vs. ground truth',
 };
 
-/// An image overlay that reports whether its picture decoded.
-function pictureLayer(url, bounds, opacity, onError) {
-  const layer = L.imageOverlay(url, bounds, { opacity, className: 'fg-pixelated', interactive: false });
-  layer.on('error', () => onError(`${url} did not load`));
-  return layer;
+/// A picture over `view`'s map, drawn now; a failure goes to `onError`.
+function showPicture(view, url, opacity, onError) {
+  const picture = view.addPicture(url, { pane: 'fg-layers', opacity });
+  picture.draw().catch((error) => onError(error.message));
+  return picture;
 }
 
 export class WallOverlay {
@@ -23,10 +24,10 @@ export class WallOverlay {
     this.status = status;
     this.checkbox = document.getElementById('overlay-on');
     this.opacity = document.getElementById('overlay-opacity');
-    this.layer = null;
+    this.picture = null;
     this.version = 0;
     this.checkbox.addEventListener('change', () => this.update());
-    this.opacity.addEventListener('input', () => this.layer?.setOpacity(this.opacity.value / 100));
+    this.opacity.addEventListener('input', () => this.picture?.setOpacity(this.opacity.value / 100));
   }
 
   setInfo(info) {
@@ -34,22 +35,21 @@ export class WallOverlay {
     this.version = info.model_version ?? 0;
     this.checkbox.disabled = !this.available;
     this.opacity.disabled = !this.available;
-    this.checkbox.closest('label').title = this.available ? '' : 'this server has no wall overlay';
+    this.checkbox.closest('label').title = this.available
+      ? "the plan's walls drawn on the gridmap through the model" : 'this server has no wall overlay';
     this.update();
   }
 
   update() {
     const url = `/api/overlay.png?v=${this.version}`;
     if (!this.available || !this.checkbox.checked) {
-      this.layer?.remove();
-      this.layer = null;
+      this.picture?.remove();
+      this.picture = null;
       return;
     }
-    if (this.layer && this.url === url) return;
-    this.layer?.remove();
-    this.url = url;
-    this.layer = pictureLayer(url, this.views.grid.bounds, this.opacity.value / 100, (m) => this.status(m, 'error'))
-      .addTo(this.views.grid.map);
+    if (this.picture && this.picture.url === url) return;
+    this.picture?.remove();
+    this.picture = showPicture(this.views.grid, url, this.opacity.value / 100, (m) => this.status(m, 'error'));
   }
 }
 
@@ -62,12 +62,12 @@ export class HeatMap {
     this.kind = document.getElementById('heatmap-kind');
     this.opacity = document.getElementById('heatmap-opacity');
     this.layers = [];
-    this.layer = null;
+    this.picture = null;
     this.legend = L.control({ position: 'bottomright' });
     this.legend.onAdd = () => L.DomUtil.create('div', 'fg-legend');
     this.checkbox.addEventListener('change', () => this.update());
     this.kind.addEventListener('change', () => this.update());
-    this.opacity.addEventListener('input', () => this.layer?.setOpacity(this.opacity.value / 100));
+    this.opacity.addEventListener('input', () => this.picture?.setOpacity(this.opacity.value / 100));
   }
 
   /// Reads the layer list again (after a refit); resolves when the picture is in place.
@@ -106,18 +106,15 @@ export class HeatMap {
   update() {
     const layer = this.current();
     if (!this.checkbox.checked || !layer) {
-      this.layer?.remove();
-      this.layer = null;
+      this.picture?.remove();
+      this.picture = null;
       this.legend.remove();
       return;
     }
-    if (!this.layer || this.url !== layer.url) {
-      this.layer?.remove();
-      this.url = layer.url;
-      this.layer = pictureLayer(layer.url, this.views.plan.bounds, this.opacity.value / 100,
-                                (m) => this.status(m, 'error'));
-      // Above the floorplan's picture, below markers.
-      this.layer.addTo(this.views.plan.map);
+    if (!this.picture || this.picture.url !== layer.url) {
+      this.picture?.remove();
+      this.picture = showPicture(this.views.plan, layer.url, this.opacity.value / 100,
+                                 (m) => this.status(m, 'error'));
     }
     this.legend.addTo(this.views.plan.map);
     this.drawLegend(layer);

@@ -1,5 +1,6 @@
 // Pairs: the alignment's own (dots on both maps), the operator's manual pairs (numbered, listed,
-// added by a click on each map, deleted) and a refit of a chosen model on all of them.
+// added by a click on each map, deleted) and a refit of a chosen model on all of them. Pairs are
+// kept in the maps' own frames and drawn through each view's toLatLng.
 import { fixed } from './geometry.js';
 
 const L = window.L;
@@ -22,7 +23,9 @@ export class PairsPanel {
     this.modelSelect = document.getElementById('model-select');
     this.refitButton = document.getElementById('refit');
     this.fitResult = document.getElementById('fit-result');
-    this.baseLayers = null;
+    this.base = null;        // the alignment's pairs, [[plan_x, plan_y, grid_x, grid_y], ...]
+    this.baseLayers = null;  // their dots, per map
+    this.manual = [];        // the manual pairs, as GET /api/pairs lists them
     this.manualLayers = { plan: L.layerGroup().addTo(views.plan.map), grid: L.layerGroup().addTo(views.grid.map) };
     this.pendingMarker = null;
     this.baseOn.addEventListener('change', () => this.showBase(this.baseOn.checked));
@@ -62,7 +65,8 @@ export class PairsPanel {
         this.baseCount.textContent = `${answer.base_pairs} pairs (this server does not send them)`;
         return;
       }
-      this.baseLayers = { plan: this.dots(answer.base, 0), grid: this.dots(answer.base, 2) };
+      this.base = answer.base;
+      this.baseLayers = { plan: this.dots('plan'), grid: this.dots('grid') };
       const drawn = answer.base.length;
       this.baseCount.textContent = drawn < answer.base_pairs
         ? `${answer.base_pairs.toLocaleString('en')} pairs, ${drawn.toLocaleString('en')} drawn (evenly thinned)`
@@ -74,11 +78,35 @@ export class PairsPanel {
     }
   }
 
-  /// Thousands of dots: one canvas renderer, nothing interactive.
-  dots(base, offset) {
+  /// Thousands of dots on one map: one canvas renderer, nothing interactive.
+  dots(name) {
+    const view = this.views[name];
+    const offset = name === 'plan' ? 0 : 2;
     const renderer = L.canvas({ padding: 0.3 });
     const style = { renderer, radius: 1.2, stroke: false, fillColor: '#2ca25f', fillOpacity: 0.55, interactive: false };
-    return L.layerGroup(base.map((row) => L.circleMarker([row[offset + 1], row[offset]], style)));
+    return L.layerGroup(this.base.map((row) => L.circleMarker(view.toLatLng([row[offset], row[offset + 1]]), style)));
+  }
+
+  /// Draws the pairs on map `name` again (its view's frame changed).
+  redraw(name) {
+    if (this.baseLayers) {
+      this.baseLayers[name].remove();
+      this.baseLayers[name] = this.dots(name);
+      if (this.baseOn.checked) this.baseLayers[name].addTo(this.views[name].map);
+    }
+    this.drawManual(name);
+    if (this.pendingMarker && name === 'plan') this.pendingMarker.setLatLng(this.views.plan.toLatLng(this.first));
+  }
+
+  drawManual(name) {
+    const layer = this.manualLayers[name];
+    layer.clearLayers();
+    for (const pair of this.manual) {
+      layer.addLayer(L.marker(this.views[name].toLatLng(pair[name]), {
+        icon: L.divIcon({ className: 'fg-pair', html: String(pair.id), iconSize: [20, 20], iconAnchor: [10, 10] }),
+        interactive: false, keyboard: false, zIndexOffset: 300,
+      }));
+    }
   }
 
   // ---- manual pairs ----
@@ -92,16 +120,8 @@ export class PairsPanel {
       return;
     }
     this.state.pairs = answer.pairs;
-    for (const layer of Object.values(this.manualLayers)) layer.clearLayers();
-    for (const pair of answer.pairs) {
-      for (const name of ['plan', 'grid']) {
-        const [x, y] = pair[name];
-        this.manualLayers[name].addLayer(L.marker([y, x], {
-          icon: L.divIcon({ className: 'fg-pair', html: String(pair.id), iconSize: [20, 20], iconAnchor: [10, 10] }),
-          interactive: false, keyboard: false, zIndexOffset: 300,
-        }));
-      }
-    }
+    this.manual = answer.pairs;
+    for (const name of ['plan', 'grid']) this.drawManual(name);
     const rows = answer.pairs.map((pair) => {
       const row = document.createElement('tr');
       row.dataset.pairId = pair.id;
@@ -155,9 +175,10 @@ export class PairsPanel {
       this.status(`Add pair: click on the ${this.mode === 'plan' ? 'floorplan' : 'gridmap'} now (Esc cancels)`, 'prompt');
       return true;
     }
+    const p = this.views[from].fromLatLng(latlng);
     if (this.mode === 'plan') {
-      this.first = [latlng.lng, latlng.lat];
-      this.pendingMarker = L.marker(latlng, {
+      this.first = [p.x, p.y];
+      this.pendingMarker = L.marker(this.views.plan.toLatLng(this.first), {
         icon: L.divIcon({ className: 'fg-pair fg-pair-pending', html: '?', iconSize: [20, 20], iconAnchor: [10, 10] }),
         interactive: false,
       }).addTo(this.views.plan.map);
@@ -166,7 +187,7 @@ export class PairsPanel {
       return true;
     }
     const plan = this.first;
-    const grid = [latlng.lng, latlng.lat];
+    const grid = [p.x, p.y];
     this.cancelAdd(null);
     this.api.addPair(plan, grid).then(
       (answer) => this.status(`pair ${answer.id} added: plan ${xy(plan)} ↔ grid ${xy(grid)}; Refit to use it`, 'info'),

@@ -1,19 +1,20 @@
 // The live robot pose: GET /api/robot_pose about 4 times a second, redrawn on both maps
-// when its sequence number changes (gridmap pose as sent, floorplan pose as the model maps it).
+// when its sequence number changes (gridmap pose as sent, floorplan pose as the model maps it),
+// each drawn through its view's toLatLng / toDisplayAngle.
 import { degrees, fixed } from './geometry.js';
-import { poseIcon, toLatLng } from './maps.js';
+import { poseIcon } from './maps.js';
 
 const L = window.L;
 const POLL_MS = 225;
 
 export class RobotFeed {
-  constructor({ views, api, status, state, linked }) {
+  constructor({ views, api, status, state }) {
     this.views = views;
     this.api = api;
     this.status = status;
     this.state = state;
-    this.linked = linked;
     this.sequence = 0;
+    this.last = null;  // {pose, plan}: the pose drawn
     this.busy = false;
     this.failing = false;
     this.markers = { plan: null, grid: null };
@@ -36,6 +37,11 @@ export class RobotFeed {
   /// Redraws even when the sequence did not change (the model changed).
   refresh() {
     return this.poll(true);
+  }
+
+  /// Draws the last pose again (a view's frame changed).
+  redraw() {
+    if (this.last) this.draw(this.last.pose, this.last.plan);
   }
 
   async poll(force) {
@@ -64,28 +70,34 @@ export class RobotFeed {
     return answer.points[0];
   }
 
-  place(name, at, theta) {
-    const icon = poseIcon('robot', theta, { arrow: 16 });
+  /// The robot's marker on one map: `point` {x, y} and `theta` in that map's frame (null: none).
+  place(name, point, theta) {
+    const view = this.views[name];
+    const at = point ? view.toLatLng(point) : null;
+    const icon = poseIcon('robot', typeof theta === 'number' ? view.toDisplayAngle(theta) : null, { arrow: 16 });
     if (!at) {
       if (this.markers[name]) this.markers[name].remove();
       this.markers[name] = null;
-      return;
+      return null;
     }
     if (this.markers[name]) {
       this.markers[name].setLatLng(at).setIcon(icon);
     } else {
       this.markers[name] = L.marker(at, { icon, interactive: false, keyboard: false, zIndexOffset: 800 })
-        .addTo(this.views[name].map);
+        .addTo(view.map);
     }
+    return at;
   }
 
   draw(pose, plan) {
-    const grid = L.latLng(pose.y, pose.x);
-    const planAt = plan && plan.x !== null && plan.x !== undefined ? toLatLng(plan) : null;
+    this.last = { pose, plan };
+    const planMapped = plan && plan.x !== null && plan.x !== undefined;
     const planTheta = plan && typeof plan.theta === 'number' ? plan.theta : null;
-    this.place('grid', grid, pose.theta);
-    this.place('plan', planAt, planTheta);
-    this.state.robot = { sequence: pose.sequence, grid, plan: planAt, theta: pose.theta, planTheta };
+    const grid = this.place('grid', pose, pose.theta);
+    const planAt = this.place('plan', planMapped ? plan : null, planTheta);
+    // grid, plan: the markers' LatLngs; pose: as sent (grid frame).
+    this.state.robot = { sequence: pose.sequence, pose: { x: pose.x, y: pose.y, theta: pose.theta },
+                         grid, plan: planAt, theta: pose.theta, planTheta };
     const std = plan && typeof plan.std_m === 'number' ? ` · std ${fixed(plan.std_m, 3)} m` : '';
     const flag = plan && plan.flag && plan.flag !== 'ok' ? ` · ${plan.flag}` : '';
     this.text.innerHTML =
@@ -99,7 +111,7 @@ export class RobotFeed {
   panTo() {
     const robot = this.state.robot;
     if (!robot) return;
-    this.linked.setViewQuietly('grid', robot.grid);
-    if (robot.plan) this.linked.setViewQuietly('plan', robot.plan);
+    this.views.grid.setViewQuietly(robot.grid);
+    if (robot.plan) this.views.plan.setViewQuietly(robot.plan);
   }
 }

@@ -1,12 +1,16 @@
-// floorgrid viewer: the floorplan and the robot's gridmap side by side. A click on either map
-// is mapped to the other by the server's model; the gridmap pose is the robot's goal.
-// window.floorgridViewer = {ready, plan, grid, state} is the browser tests' hook.
+// floorgrid viewer: the floorplan and the robot's gridmap side by side, the gridmap drawn turned
+// like the plan when the two are turned apart (turn.js). A click on either map is mapped to the
+// other by the server's model; the gridmap pose is the robot's goal.
+// window.floorgridViewer is the browser tests' hook: {ready, plan, grid (the Leaflet maps),
+// planView, gridView (their MapViews: toLatLng, fromLatLng, turn), turn (the TurnControl:
+// alpha), goal, robot, pairs, overlay, state}.
 import { api } from './api.js';
 import { GoalTool } from './goal.js';
 import { HeatMap, WallOverlay } from './layers.js';
-import { createMapView, LinkedViews } from './maps.js';
+import { LinkedViews, MapView } from './maps.js';
 import { PairsPanel } from './pairs.js';
 import { RobotFeed } from './robot.js';
+import { measureTurn, TurnControl } from './turn.js';
 
 const statusLine = document.getElementById('status');
 
@@ -50,12 +54,14 @@ async function start(hook) {
   const info = await api.info();
   hook.info = info;
   showInfo(info);
+  // The turn first: the gridmap's first picture is drawn with it.
+  const measured = await measureTurn(api, info);
+  const turn = new TurnControl({ api, status, measured });
   const views = {
-    plan: createMapView('plan-map', 'plan', info.plan, '/api/maps/plan.png'),
-    grid: createMapView('grid-map', 'grid', info.grid, '/api/maps/grid.png'),
+    plan: new MapView('plan-map', 'plan', info.plan, '/api/maps/plan.png'),
+    grid: new MapView('grid-map', 'grid', info.grid, '/api/maps/grid.png', { turn: turn.wanted() }),
   };
-  hook.plan = views.plan.map;
-  hook.grid = views.grid.map;
+  turn.attach(views.grid);
   const state = hook.state;
 
   const linkBox = document.getElementById('linked-views');
@@ -63,7 +69,7 @@ async function start(hook) {
   linkBox.addEventListener('change', () => { if (linkBox.checked) linked.follow('plan', 'grid'); });
 
   const goal = new GoalTool({ views, api, status, state });
-  const robot = new RobotFeed({ views, api, status, state, linked });
+  const robot = new RobotFeed({ views, api, status, state });
   const overlay = new WallOverlay({ views, status });
   const heatmap = new HeatMap({ views, api, status });
   const pairs = new PairsPanel({
@@ -74,10 +80,17 @@ async function start(hook) {
       showInfo(fresh);
       pairs.setInfo(fresh);
       overlay.setInfo(fresh);
-      await Promise.all([heatmap.setInfo(fresh), goal.refresh(), robot.refresh()]);
+      await Promise.all([heatmap.setInfo(fresh), turn.refresh(fresh), goal.refresh(), robot.refresh()]);
     },
   });
-  hook.goal = goal;
+  // A new turn redraws all that is drawn on the gridmap, in its new frame.
+  views.grid.onTurn(() => {
+    goal.redraw();
+    robot.redraw();
+    pairs.redraw('grid');
+  });
+  Object.assign(hook, { plan: views.plan.map, grid: views.grid.map, planView: views.plan, gridView: views.grid,
+                        turn, goal, robot, pairs, overlay });
 
   for (const name of ['plan', 'grid']) {
     views[name].map.on('click', (event) => {
@@ -90,13 +103,16 @@ async function start(hook) {
   robot.showReplay(info.replay);
   await Promise.all([views.plan.loaded, views.grid.loaded, pairs.loadManual(), robot.start(),
                      heatmap.setInfo(info)]);
+  // Both maps open on the same place, at the same scale (and, turned, at the same angle).
+  if (linkBox.checked) await linked.follow('plan', 'grid');
   status('Click either map to set a goal; drag the orange handle to turn it.', 'info');
   // A map origin with a yaw (rare: map_server and most of ROS ignore it) turns the map in its
-  // frame; Leaflet draws pictures unturned, so the picture would not lie under its cells.
+  // frame; the pictures are drawn without that yaw (the turn like the plan aside), so the
+  // picture would not lie under its cells.
   for (const [name, layout] of [['floorplan', info.plan], ['gridmap', info.grid]]) {
     if (layout.origin[2] !== 0) {
       status(`the ${name}'s origin has a yaw of ${(layout.origin[2] * 180 / Math.PI).toFixed(1)}°: ` +
-             'its picture is drawn unturned, so what you click on it is off (the API is exact)',
+             'its picture is drawn without it, so what you click on it is off (the API is exact)',
              'warn');
     }
   }
