@@ -39,15 +39,6 @@ ReferencePairs lattice_pairs(const Truth& truth, double x0, double x1, double y0
   return pairs;
 }
 
-/// A model of `name` fitted to `pairs`.
-inline std::unique_ptr<PointMapping> fitted(const std::string& name, const ReferencePairs& pairs) {
-  MappingOptions options;
-  options.model = name;
-  auto model = make_mapping(options);
-  model->fit(pairs);
-  return model;
-}
-
 /// A smooth bend on top of a similarity (non-rigid truth): up to ~0.3 m over 20 m.
 struct BentTruth {
   KnownSimilarity similarity;

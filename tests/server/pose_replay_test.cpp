@@ -8,21 +8,14 @@
 #include <cmath>
 #include <thread>
 
-#include "floorgrid/mapping/mapping_factory.hpp"
+#include "tests/support/test_data.hpp"
 
 namespace floorgrid::server {
 namespace {
 
 std::shared_ptr<const PointMapping> identity_model() {
-  ReferencePairs pairs;
-  pairs.points_in_plan = Eigen::Matrix2Xd(2, 4);
-  pairs.points_in_plan << 0, 1, 0, 1, 0, 0, 1, 1;
-  pairs.points_in_grid = pairs.points_in_plan;
-  MappingOptions options;
-  options.model = "gt";
-  std::shared_ptr<PointMapping> model = make_mapping(options);
-  model->fit(pairs);
-  return model;
+  return test::fitted(
+      "gt", test::pairs_of({{0, 0}, {1, 0}, {0, 1}, {1, 1}}, {{0, 0}, {1, 0}, {0, 1}, {1, 1}}));
 }
 
 std::vector<io::TimedPose> track_of(const std::vector<double>& times) {

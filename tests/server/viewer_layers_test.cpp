@@ -49,19 +49,10 @@ std::shared_ptr<io::LoadedDataset> room_dataset(bool with_truth) {
 }
 
 std::shared_ptr<const PointMapping> similarity_model() {
-  ReferencePairs pairs;
-  pairs.points_in_plan.resize(2, 12);
-  pairs.points_in_grid.resize(2, 12);
-  for (int i = 0; i < 12; ++i) {
-    const Eigen::Vector2d p(1.0 * i, 0.7 * (i % 5));
-    pairs.points_in_plan.col(i) = p;
-    pairs.points_in_grid.col(i) = similarity(p);
-  }
-  MappingOptions options;
-  options.model = "gt";
-  std::shared_ptr<PointMapping> model = make_mapping(options);
-  model->fit(pairs);
-  return model;
+  Eigen::Matrix2Xd points(2, 12);
+  for (int i = 0; i < 12; ++i)
+    points.col(i) = Eigen::Vector2d(1.0 * i, 0.7 * (i % 5));
+  return test::fitted("gt", test::pairs_through(similarity, points));
 }
 
 io::GreyImage decoded(const std::string& png, const std::filesystem::path& file) {

@@ -19,6 +19,7 @@
 #include "floorgrid/io/image_io.hpp"
 #include "floorgrid/mapping/mapping_factory.hpp"
 #include "floorgrid/server/viewer_server.hpp"
+#include "tests/support/test_data.hpp"
 
 // Last: httplib.h brings <resolv.h>, whose `_res` macro breaks Eigen's headers after it.
 #include <httplib.h>  // NOLINT(llvm-include-order)
@@ -36,19 +37,10 @@ struct Similarity {
 
 /// A gt model fitted to exact pairs of `truth` on a 10 m square.
 std::shared_ptr<const PointMapping> model_of(const Similarity& truth) {
-  ReferencePairs pairs;
-  pairs.points_in_plan.resize(2, 25);
-  pairs.points_in_grid.resize(2, 25);
-  for (int i = 0; i < 25; ++i) {
-    const Eigen::Vector2d p(2.5 * (i % 5), 2.5 * (i / 5));
-    pairs.points_in_plan.col(i) = p;
-    pairs.points_in_grid.col(i) = truth(p);
-  }
-  MappingOptions options;
-  options.model = "gt";
-  std::shared_ptr<PointMapping> model = make_mapping(options);
-  model->fit(pairs);
-  return model;
+  Eigen::Matrix2Xd lattice(2, 25);
+  for (int i = 0; i < 25; ++i)
+    lattice.col(i) = Eigen::Vector2d(2.5 * (i % 5), 2.5 * (i / 5));
+  return test::fitted("gt", test::pairs_through(truth, lattice));
 }
 
 /// A 40 x 30 cell map at 0.1 m, origin (-1, 2): free, one occupied cell at (3, 5), its top

@@ -9,6 +9,8 @@
 #include <random>
 #include <sstream>
 
+#include "floorgrid/mapping/mapping_factory.hpp"
+
 namespace floorgrid::test {
 
 std::filesystem::path data_path(const std::string& relative) {
@@ -99,6 +101,24 @@ ReferencePairs pairs_of(const std::vector<Eigen::Vector2d>& plan,
     pairs.points_in_grid.col(static_cast<Eigen::Index>(i)) = grid[i];
   }
   return pairs;
+}
+
+ReferencePairs pairs_through(const std::function<Eigen::Vector2d(const Eigen::Vector2d&)>& truth,
+                             const Eigen::Matrix2Xd& points_in_plan) {
+  ReferencePairs pairs;
+  pairs.points_in_plan = points_in_plan;
+  pairs.points_in_grid.resize(2, points_in_plan.cols());
+  for (Eigen::Index i = 0; i < points_in_plan.cols(); ++i)
+    pairs.points_in_grid.col(i) = truth(points_in_plan.col(i));
+  return pairs;
+}
+
+std::unique_ptr<PointMapping> fitted(const std::string& model, const ReferencePairs& pairs) {
+  MappingOptions options;
+  options.model = model;
+  std::unique_ptr<PointMapping> mapping = make_mapping(options);
+  mapping->fit(pairs);
+  return mapping;
 }
 
 }  // namespace floorgrid::test

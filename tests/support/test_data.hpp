@@ -3,11 +3,14 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <functional>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "floorgrid/geometry/reference_pairs.hpp"
+#include "floorgrid/mapping/point_mapping.hpp"
 
 namespace floorgrid::test {
 
@@ -33,6 +36,13 @@ class TempDir {
 /// Pairs of plan and grid points given side by side (equal lengths), in that order.
 ReferencePairs pairs_of(const std::vector<Eigen::Vector2d>& plan,
                         const std::vector<Eigen::Vector2d>& grid);
+
+/// Pairs at `points_in_plan` and where `truth` takes each of them in the grid.
+ReferencePairs pairs_through(const std::function<Eigen::Vector2d(const Eigen::Vector2d&)>& truth,
+                             const Eigen::Matrix2Xd& points_in_plan);
+
+/// `model` (one of mapping_model_names()) fitted to `pairs` with its default options.
+std::unique_ptr<PointMapping> fitted(const std::string& model, const ReferencePairs& pairs);
 
 /// Writes `text` to `path` (binary, exact bytes).
 void write_file(const std::filesystem::path& path, const std::string& text);
