@@ -24,14 +24,10 @@ io::MappedRow map_one(const PointMapping& model, const Eigen::Vector2d& point,
   io::MappedRow row;
   row.mapped = inverse ? model.map_inverse(p) : model.map_forward(p);
   if (row.mapped.flag != MapFlag::not_invertible) {
+    // The heading through the Jacobian at the plan point (the inverse's is solved once).
     if (heading) {
-      if (inverse) {
-        const auto pose = model.inverse_pose({p.x(), p.y(), *heading});
-        if (pose)
-          row.heading = pose->theta;
-      } else {
-        row.heading = model.forward_pose({p.x(), p.y(), *heading}).theta;
-      }
+      row.heading = inverse ? model.heading_in_plan(row.mapped.point, *heading)
+                            : model.heading_in_grid(p, *heading);
     }
     row.mapped.point /= unit;
   }

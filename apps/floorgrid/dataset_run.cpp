@@ -20,12 +20,6 @@ void report_loading(const io::LoadedDataset& d) {
     spdlog::info("{}: {}", d.manifest.floorplan.string(), d.unit_decision->reason);
 }
 
-GroundTruth warp_truth(const io::LoadedDataset& dataset) {
-  if (!dataset.truth_warp)
-    return {};
-  return [&warp = *dataset.truth_warp](const Eigen::Vector2d& p) { return warp.plan_to_grid(p); };
-}
-
 const RobotLog& dataset_log_or_none(const io::LoadedDataset& dataset, bool use) {
   static const RobotLog none;
   return dataset.log && use ? *dataset.log : none;

@@ -23,9 +23,6 @@ const RobotLog& dataset_log(const io::LoadedDataset& dataset);
 /// without a run (evaluate, align from the maps alone).
 const RobotLog& dataset_log_or_none(const io::LoadedDataset& dataset, bool use = true);
 
-/// The dataset's exact warp as a GroundTruth (plan to grid), or an empty one without it.
-GroundTruth warp_truth(const io::LoadedDataset& dataset);
-
 /// What the dual localization of a dataset works on (`dataset` must outlive it).
 DualLocalizerInputs dual_inputs(const io::LoadedDataset& dataset);
 

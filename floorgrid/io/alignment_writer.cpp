@@ -76,12 +76,9 @@ json model_metrics_json(const ModelAlignment& m) {
   return j;
 }
 
-namespace {
-
-/// The gridmap with the plan's walls drawn through `plan_to_grid`.
-void draw_walls(RgbImage& picture, const AlignmentInputs& in,
-                const std::function<Eigen::Vector2d(const Eigen::Vector2d&)>& plan_to_grid,
-                const Colour& colour) {
+void draw_plan_walls(RgbImage& picture, const AlignmentInputs& in,
+                     const std::function<Eigen::Vector2d(const Eigen::Vector2d&)>& plan_to_grid,
+                     const Colour& colour) {
   if (in.plan) {
     draw_plan(picture, in.gridmap.geometry(), *in.plan, plan_to_grid, colour);
     return;
@@ -92,14 +89,13 @@ void draw_walls(RgbImage& picture, const AlignmentInputs& in,
   draw_points(picture, in.gridmap.geometry(), mapped, colour, 0);
 }
 
-}  // namespace
-
 RgbImage overlay_picture(const RgbImage& background, const AlignmentInputs& in,
                          const PointMapping& model, const std::optional<GroundTruth>& truth) {
   RgbImage picture = background;
   if (truth)
-    draw_walls(picture, in, *truth, {0, 170, 0});
-  draw_walls(picture, in, [&](const Eigen::Vector2d& p) { return model.forward(p); }, {220, 0, 0});
+    draw_plan_walls(picture, in, *truth, {0, 170, 0});
+  draw_plan_walls(picture, in, [&](const Eigen::Vector2d& p) { return model.forward(p); },
+                  {220, 0, 0});
   return picture;
 }
 

@@ -23,6 +23,12 @@ struct AlignmentTimings {
 /// distances. Shared by `align` and `evaluate`.
 nlohmann::json model_metrics_json(const ModelAlignment& model);
 
+/// Draws the plan's walls, mapped into the gridmap's frame by `plan_to_grid`, on a picture of the
+/// gridmap's pixels: a DXF plan's segments and arcs as lines, else its wall samples as dots.
+void draw_plan_walls(RgbImage& picture, const AlignmentInputs& inputs,
+                     const std::function<Eigen::Vector2d(const Eigen::Vector2d&)>& plan_to_grid,
+                     const Colour& colour);
+
 /// The overlay of a model (thesis Fig. 6.1-6.13): the plan's walls through the model (red) and
 /// through the truth when known (green) on `background` (grid_picture of the gridmap).
 RgbImage overlay_picture(const RgbImage& background, const AlignmentInputs& inputs,

@@ -274,4 +274,10 @@ nlohmann::json floorplan_units_json(const LoadedDataset& d) {
           {"candidates", std::move(candidates)}};
 }
 
+GroundTruth warp_truth(const LoadedDataset& dataset) {
+  if (!dataset.truth_warp)
+    return {};
+  return [&warp = *dataset.truth_warp](const Eigen::Vector2d& p) { return warp.plan_to_grid(p); };
+}
+
 }  // namespace floorgrid::io

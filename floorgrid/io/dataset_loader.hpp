@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "floorgrid/evaluation/model_evaluation.hpp"
 #include "floorgrid/geometry/reference_pairs.hpp"
 #include "floorgrid/io/dataset_manifest.hpp"
 #include "floorgrid/io/dxf_reader.hpp"
@@ -68,6 +69,10 @@ LoadedDataset load_dataset(const std::filesystem::path& path, const PlanRasterOp
 /// source and confidence, the reason, and each candidate with the drawing's probability and,
 /// when the run decided, how the gridmap fitted under it. Null for a raster plan.
 nlohmann::json floorplan_units_json(const LoadedDataset& dataset);
+
+/// The dataset's exact warp as a GroundTruth (plan to grid; `dataset` must outlive it), or an
+/// empty one without it.
+GroundTruth warp_truth(const LoadedDataset& dataset);
 
 /// The occupied cell centres of a grid (the "walls" of a raster plan), 2 x N, metres.
 Eigen::Matrix2Xd occupied_cell_centres(const OccupancyGrid& grid);

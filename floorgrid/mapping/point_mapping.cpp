@@ -231,20 +231,30 @@ MapFlag PointMapping::flag_of(bool inside_hull, double nearest_pair_m,
   return MapFlag::ok;
 }
 
+double PointMapping::heading_in_grid(const Eigen::Vector2d& point_in_plan,
+                                     double theta_in_plan) const {
+  const Eigen::Vector2d heading =
+      jacobian(point_in_plan) * Eigen::Vector2d(std::cos(theta_in_plan), std::sin(theta_in_plan));
+  return std::atan2(heading.y(), heading.x());
+}
+
+double PointMapping::heading_in_plan(const Eigen::Vector2d& point_in_plan,
+                                     double theta_in_grid) const {
+  const Eigen::Vector2d heading = jacobian(point_in_plan).inverse() *
+                                  Eigen::Vector2d(std::cos(theta_in_grid), std::sin(theta_in_grid));
+  return std::atan2(heading.y(), heading.x());
+}
+
 Pose2 PointMapping::forward_pose(const Pose2& pose) const {
   const Eigen::Vector2d p = forward(pose.translation());
-  const Eigen::Vector2d heading =
-      jacobian(pose.translation()) * Eigen::Vector2d(std::cos(pose.theta), std::sin(pose.theta));
-  return {p.x(), p.y(), std::atan2(heading.y(), heading.x())};
+  return {p.x(), p.y(), heading_in_grid(pose.translation(), pose.theta)};
 }
 
 std::optional<Pose2> PointMapping::inverse_pose(const Pose2& pose) const {
   const InverseMapping inv = inverse(pose.translation());
   if (!inv.invertible)
     return std::nullopt;
-  const Eigen::Vector2d heading =
-      jacobian(inv.point).inverse() * Eigen::Vector2d(std::cos(pose.theta), std::sin(pose.theta));
-  return Pose2{inv.point.x(), inv.point.y(), std::atan2(heading.y(), heading.x())};
+  return Pose2{inv.point.x(), inv.point.y(), heading_in_plan(inv.point, pose.theta)};
 }
 
 double PointMapping::nearest_pair_in_plan(const Eigen::Vector2d& p) const {

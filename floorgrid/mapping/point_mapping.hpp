@@ -160,6 +160,11 @@ class PointMapping {
   /// Sets the maximal 95% error bound of an `ok` point, metres (> 0; InputError otherwise).
   void set_max_error(double metres);
 
+  /// The grid heading of a plan heading at a plan point (through J_grid_plan there).
+  double heading_in_grid(const Eigen::Vector2d& point_in_plan, double theta_in_plan) const;
+  /// The plan heading of a grid heading, at the plan point the grid point maps back to (through
+  /// J_grid_plan^-1 there): with map_inverse()'s point, a grid pose costs one inverse.
+  double heading_in_plan(const Eigen::Vector2d& point_in_plan, double theta_in_grid) const;
   /// A plan pose in the grid frame: position forward, heading through the Jacobian.
   Pose2 forward_pose(const Pose2& pose_in_plan) const;
   /// A grid pose in the plan frame (nullopt where not invertible).

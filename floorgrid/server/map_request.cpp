@@ -80,6 +80,30 @@ nlohmann::json parse_request(const std::string& body) {
   return request;
 }
 
+nlohmann::json mapped_point_json(const PointMapping& model, const Pose2& pose, bool has_theta,
+                                 bool forward) {
+  const MappedPoint m =
+      forward ? model.map_forward(pose.translation()) : model.map_inverse(pose.translation());
+  const bool invertible = m.flag != MapFlag::not_invertible;
+  nlohmann::json out;
+  out["x"] = invertible ? nlohmann::json(m.point.x()) : nlohmann::json(nullptr);
+  out["y"] = invertible ? nlohmann::json(m.point.y()) : nlohmann::json(nullptr);
+  if (has_theta) {
+    // Through the Jacobian at the plan point: the inverse is solved once, by map_inverse.
+    std::optional<double> theta;
+    if (forward)
+      theta = model.heading_in_grid(pose.translation(), pose.theta);
+    else if (invertible)
+      theta = model.heading_in_plan(m.point, pose.theta);
+    out["theta"] = number_or_null(theta);
+  }
+  out["std_m"] = number_or_null(m.std_m);
+  out["nearest_pair_m"] = m.nearest_pair_m;
+  out["flag"] = to_string(m.flag);
+  out["extrapolated"] = m.flag == MapFlag::extrapolated || m.flag == MapFlag::outside_hull;
+  return out;
+}
+
 nlohmann::json map_points(const nlohmann::json& request, const PointMapping& model,
                           const RequestLimits& limits) {
   const nlohmann::json& from = field(request, "from");
@@ -93,29 +117,8 @@ nlohmann::json map_points(const nlohmann::json& request, const PointMapping& mod
   const bool forward = from == "plan";
   const std::vector<InputPoint> points = input_points(request, limits);
   nlohmann::json mapped = nlohmann::json::array();
-  for (const InputPoint& q : points) {
-    const MappedPoint m =
-        forward ? model.map_forward(q.pose.translation()) : model.map_inverse(q.pose.translation());
-    nlohmann::json out;
-    const bool invertible = m.flag != MapFlag::not_invertible;
-    out["x"] = invertible ? nlohmann::json(m.point.x()) : nlohmann::json(nullptr);
-    out["y"] = invertible ? nlohmann::json(m.point.y()) : nlohmann::json(nullptr);
-    if (q.has_theta) {
-      std::optional<double> theta;
-      if (forward) {
-        theta = model.forward_pose(q.pose).theta;
-      } else if (invertible) {
-        if (const std::optional<Pose2> p = model.inverse_pose(q.pose))
-          theta = p->theta;
-      }
-      out["theta"] = number_or_null(theta);
-    }
-    out["std_m"] = number_or_null(m.std_m);
-    out["nearest_pair_m"] = m.nearest_pair_m;
-    out["flag"] = to_string(m.flag);
-    out["extrapolated"] = m.flag == MapFlag::extrapolated || m.flag == MapFlag::outside_hull;
-    mapped.push_back(std::move(out));
-  }
+  for (const InputPoint& q : points)
+    mapped.push_back(mapped_point_json(model, q.pose, q.has_theta, forward));
   return {{"from", from},
           {"to", forward ? "grid" : "plan"},
           {"model", model.name()},

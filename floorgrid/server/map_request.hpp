@@ -32,6 +32,12 @@ struct RequestLimits {
 /// A request body as JSON; RequestError 400 when it is not JSON or not an object.
 nlohmann::json parse_request(const std::string& body);
 
+/// One point or pose mapped as the API answers it: {"x", "y" (null where not invertible),
+/// "theta" (when `has_theta`; null where it cannot be mapped), "std_m", "nearest_pair_m",
+/// "flag", "extrapolated"}; plan to grid when `forward`, else grid to plan.
+nlohmann::json mapped_point_json(const PointMapping& model, const Pose2& pose, bool has_theta,
+                                 bool forward);
+
 /// POST /api/map: {"from": "plan"|"grid", "points": [[x, y], [x, y, theta], ...], "model"?}
 /// mapped by `model` (metres, radians): {"from", "to", "model", "points": [{"x", "y", "theta"
 /// (when given), "std_m" (null where the model has none), "nearest_pair_m", "flag",

@@ -34,30 +34,6 @@ nlohmann::json map_info(const ViewerMap& map) {
           {"bounds", {{box.min().x(), box.min().y()}, {box.max().x(), box.max().y()}}}};
 }
 
-/// The robot's pose on the plan: where the model puts the grid pose, with its uncertainty.
-nlohmann::json robot_on_plan(const PointMapping& model, const Pose2& pose_in_grid) {
-  const MappedPoint m = model.map_inverse(pose_in_grid.translation());
-  const std::optional<Pose2> pose =
-      m.flag == MapFlag::not_invertible ? std::nullopt : model.inverse_pose(pose_in_grid);
-  const bool extrapolated = m.flag == MapFlag::extrapolated || m.flag == MapFlag::outside_hull;
-  if (!pose) {
-    return {{"x", nullptr},
-            {"y", nullptr},
-            {"theta", nullptr},
-            {"std_m", nullptr},
-            {"nearest_pair_m", m.nearest_pair_m},
-            {"flag", to_string(MapFlag::not_invertible)},
-            {"extrapolated", false}};
-  }
-  return {{"x", pose->x},
-          {"y", pose->y},
-          {"theta", pose->theta},
-          {"std_m", m.std_m ? nlohmann::json(*m.std_m) : nlohmann::json(nullptr)},
-          {"nearest_pair_m", m.nearest_pair_m},
-          {"flag", to_string(m.flag)},
-          {"extrapolated", extrapolated}};
-}
-
 /// At most this many of the alignment's pairs go to the page (evenly thinned).
 constexpr Eigen::Index kMaxBasePairsShown = 20000;
 
@@ -183,7 +159,7 @@ ViewerServer::ViewerServer(ViewerSession& session, ServerOptions options)
                  body["x"] = r.pose_in_grid.x;
                  body["y"] = r.pose_in_grid.y;
                  body["theta"] = r.pose_in_grid.theta;
-                 body["plan"] = robot_on_plan(*session.model(), r.pose_in_grid);
+                 body["plan"] = mapped_point_json(*session.model(), r.pose_in_grid, true, false);
                }
                answer_json(res, body);
              }));
@@ -252,7 +228,7 @@ ViewerServer::ViewerServer(ViewerSession& session, ServerOptions options)
                                              "&v=" + std::to_string(layers.model_version)}});
                }
                answer_json(res, {{"model_version", layers.model_version},
-                                 {"model", session.model()->name()},
+                                 {"model", layers.model},
                                  {"seconds", layers.layers->seconds},
                                  {"layers", list}});
              }));

@@ -42,7 +42,7 @@ std::uint64_t ViewerSession::model_version() const {
 
 VersionedLayers ViewerSession::layers() {
   if (!renderer_)
-    return {model_version(), nullptr};
+    return {model_version(), model()->name(), nullptr};
   const std::lock_guard drawing(layers_mutex_);
   std::shared_ptr<const PointMapping> model;
   std::uint64_t version = 0;
@@ -52,7 +52,7 @@ VersionedLayers ViewerSession::layers() {
     version = model_version_;
   }
   if (!layers_.layers || layers_.model_version != version)
-    layers_ = {version, std::make_shared<const ModelLayers>(renderer_(*model))};
+    layers_ = {version, model->name(), std::make_shared<const ModelLayers>(renderer_(*model))};
   return layers_;
 }
 

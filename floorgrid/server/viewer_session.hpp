@@ -53,6 +53,7 @@ struct RefitSummary {
 /// A model's layers and the model version they were drawn for.
 struct VersionedLayers {
   std::uint64_t model_version = 0;
+  std::string model;                          ///< that model's name
   std::shared_ptr<const ModelLayers> layers;  ///< null: the session draws no layers
 };
 

@@ -13,7 +13,7 @@ import { Picture } from './picture.js';
 const L = window.L;
 
 /// Leaflet bounds [[ymin, xmin], [ymax, xmax]] of a box [[xmin, ymin], [xmax, ymax]].
-export function latLngBounds([[xmin, ymin], [xmax, ymax]]) {
+function latLngBounds([[xmin, ymin], [xmax, ymax]]) {
   return L.latLngBounds([ymin, xmin], [ymax, xmax]);
 }
 

@@ -61,10 +61,6 @@ export class PairsPanel {
         this.status(error.message, 'error');
         return;
       }
-      if (!Array.isArray(answer.base)) {
-        this.baseCount.textContent = `${answer.base_pairs} pairs (this server does not send them)`;
-        return;
-      }
       this.base = answer.base;
       this.baseLayers = { plan: this.dots('plan'), grid: this.dots('grid') };
       const drawn = answer.base.length;

@@ -15,7 +15,7 @@ function loadImage(url) {
 
 /// A blob: URL of `image` turned by `angle` (radians, counterclockwise in the map's y-up frame)
 /// about its centre, on a canvas just holding the turned picture.
-export async function turnedPictureUrl(image, angle) {
+async function turnedPictureUrl(image, angle) {
   const width = image.naturalWidth;
   const height = image.naturalHeight;
   const cos = Math.abs(Math.cos(angle));

@@ -53,9 +53,7 @@ export class RobotFeed {
       this.failing = false;
       if (pose.sequence && (force || pose.sequence !== this.sequence)) {
         this.sequence = pose.sequence;
-        // Older servers send no "plan": ask the model ourselves.
-        const plan = pose.plan || await this.mapToPlan(pose);
-        this.draw(pose, plan);
+        this.draw(pose, pose.plan);
       }
     } catch (error) {
       if (!this.failing) this.status(`robot pose: ${error.message}`, 'error');
@@ -63,11 +61,6 @@ export class RobotFeed {
     } finally {
       this.busy = false;
     }
-  }
-
-  async mapToPlan(pose) {
-    const answer = await this.api.map('grid', [[pose.x, pose.y, pose.theta]]);
-    return answer.points[0];
   }
 
   /// The robot's marker on one map: `point` {x, y} and `theta` in that map's frame (null: none).
