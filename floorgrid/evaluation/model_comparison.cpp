@@ -16,6 +16,32 @@ MappingOptions run_mapping_defaults() {
   return options;
 }
 
+namespace {
+
+// The pairs' plan points with the grid points the truth gives them.
+ReferencePairs ideal_pairs(const ReferencePairs& pairs, const GroundTruth& truth) {
+  ReferencePairs ideal = pairs;
+  for (Eigen::Index i = 0; i < pairs.size(); ++i)
+    ideal.points_in_grid.col(i) = truth(pairs.points_in_plan.col(i));
+  return ideal;
+}
+
+// The model fitted on ideal pairs, judged over the domain (nothing when it cannot be fitted).
+std::optional<ErrorStatistics> ideal_errors(const MappingOptions& mapping,
+                                            const ReferencePairs& ideal,
+                                            const EvaluationDomain& domain,
+                                            const GroundTruth& truth) {
+  try {
+    auto model = make_mapping(mapping);
+    model->fit(ideal);
+    return error_statistics(model_errors(*model, domain.points_in_plan, truth));
+  } catch (const InputError&) {
+    return std::nullopt;
+  }
+}
+
+}  // namespace
+
 void judge_model(ModelReport& report, const EvaluationDomain& domain,
                  const std::optional<GroundTruth>& truth, const Eigen::Matrix2Xd& drift_points,
                  const ModelComparisonOptions& options) {
@@ -52,6 +78,10 @@ std::vector<ModelReport> compare_models(const ReferencePairs& pairs, const Evalu
   const CrossValidationKind auto_kind = options.mapping.auto_select.cv.kind;
   const std::vector<std::string> candidates = options.mapping.auto_select.candidates;
   std::map<std::string, CrossValidationResult> cross_validated, by_runs;
+  const std::optional<ReferencePairs> ideal =
+      options.ideal_pairs && truth && domain.points_in_plan.cols() > 0
+          ? std::optional<ReferencePairs>(ideal_pairs(pairs, *truth))
+          : std::nullopt;
   for (std::size_t done = 0; done < order.size(); ++done) {
     const std::size_t k = order[done];
     const std::string& name = options.models[k];
@@ -116,6 +146,8 @@ std::vector<ModelReport> compare_models(const ReferencePairs& pairs, const Evalu
       continue;
     }
     judge_model(report, domain, truth, domain.points_in_plan, options);
+    if (ideal && name != "auto")
+      report.ideal_errors = ideal_errors(mapping, *ideal, domain, *truth);
     reports[k] = std::move(report);
   }
   if (progress)

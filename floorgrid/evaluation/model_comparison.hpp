@@ -24,6 +24,11 @@ struct ModelReport {
   std::vector<std::size_t> histogram;     ///< 0.05 m bins up to "1.0 m and more"
   /// Its std_m against the true errors over the domain (with a truth and an error model).
   std::optional<Calibration> calibration;
+  /// With a truth and ModelComparisonOptions::ideal_pairs: the errors over the domain of the
+  /// same model fitted on ideal pairs (the pairs' plan points with their true grid points):
+  /// what the model could reach from pairs at those places, so errors / ideal_errors is the
+  /// pairs' own loss.
+  std::optional<ErrorStatistics> ideal_errors;
   BackAndForth back_and_forth;    ///< drift of points mapped there and back
   double evaluate_seconds = 0.0;  ///< time of the judging
 };
@@ -43,6 +48,8 @@ struct ModelComparisonOptions {
   /// kind too, except that auto's runs are cross-validated besides blocked folds (the models'
   /// cv_error_m and std_m stay those of blocked folds).
   int cv_folds = 5;
+  /// With a truth: also fit each model (but auto) on ideal pairs and judge it (ideal_errors).
+  bool ideal_pairs = false;
   int back_and_forth_rounds = 100;          ///< thesis 6.5
   std::size_t back_and_forth_points = 300;  ///< domain points followed
 };

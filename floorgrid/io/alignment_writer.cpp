@@ -41,6 +41,12 @@ json model_metrics_json(const ModelAlignment& m) {
     j["max_error_m"] = number(r.errors->max);
     j["error_histogram"] = r.histogram;
   }
+  if (r.ideal_errors) {
+    // Extension: the model fitted on ideal pairs (the truth at the pairs' plan points).
+    j["ideal"] = {{"mean_error_m", number(r.ideal_errors->mean)},
+                  {"median_error_m", number(r.ideal_errors->median)},
+                  {"p95_error_m", number(r.ideal_errors->p95)}};
+  }
   if (r.calibration) {
     // Extension: how often the true error lies within std_m and 2 std_m (ErrorModel).
     j["calibration"] = {{"within_1sigma", number(r.calibration->within_1sigma)},
@@ -141,7 +147,38 @@ json metrics_json(const Alignment& a, const std::string& dataset, const Alignmen
     pairs["wall_slide"] = slide;
   }
   pairs["source"] = to_string(a.pairs_from);
+  // Why the run's pairs were not used (the maps' stood in), or null.
+  pairs["fallback"] =
+      a.sources && !a.sources->fallback.empty() ? json(a.sources->fallback) : json(nullptr);
   j["pairs"] = pairs;
+  if (a.sources) {
+    // The run's pairs judged on their own and against the maps' alignment (SPEC revision 3).
+    const PairSourceCheck& c = *a.sources;
+    j["sources"] = {
+        {"chosen", c.chosen},
+        {"filled_pairs", c.fill.size()},
+        {"run",
+         {{"accepted", c.run_accepted},
+          {"localized", c.run_localized},
+          {"failure", c.run_failure.empty() ? json(nullptr) : json(c.run_failure)},
+          {"plan_match", c.run_match.judged ? number(c.run_match.score.score) : json(nullptr)},
+          {"coverage", number(c.coverage)},
+          {"pair_scans", c.pair_scans},
+          {"scans", c.scans}}},
+        {"maps",
+         {{"accepted", c.maps_accepted},
+          {"plan_match",
+           c.maps_match.judged ? number(c.maps_match.score.score) : json(nullptr)}}},
+        {"agreement",
+         c.compared ? json{{"agree", c.agree},
+                           {"median_m", number(c.disagreement_median_m)},
+                           {"p90_m", number(c.disagreement_p90_m)},
+                           {"tolerance_m", number(c.disagreement_tolerance_m)},
+                           {"run_scale", number(c.run_scale)},
+                           {"maps_scale", number(c.maps_scale)},
+                           {"scale_tolerance", number(c.scale_tolerance)}}
+                    : json(nullptr)}};
+  }
   if (a.maps) {
     const MapAlignment& m = *a.maps;
     const ScoredSimilarity& r = m.registration.best;
@@ -157,6 +194,8 @@ json metrics_json(const Alignment& a, const std::string& dataset, const Alignmen
                       {"points", m.points},
                       {"stages", m.stages},
                       {"median_distance_m", number(m.median_distance_m)},
+                      {"warp_scale", number(m.scale.scale)},
+                      {"warp_scale_relative_std", number(m.scale.relative_std)},
                       {"diagnosis", m.diagnosis},
                       {"seconds", number(m.seconds)},
                       {"registration",

@@ -783,6 +783,18 @@ void visit(OptionVisitor& v, DualCheckOptions& o) {
        .choices = {}});
   v.field("consistency_heading", o.consistency_heading,
           {.unit = "rad", .doc = "Likewise for the heading", .choices = {}});
+  v.field("maps_distance", o.maps_distance,
+          {.unit = "m",
+           .doc = "With the maps aligned first: a plan pose farther than this (world metres) from "
+                  "where their bent map puts the gridmap pose makes no pairs",
+           .choices = {}});
+  v.field("maps_misfit_factor", o.maps_misfit_factor,
+          {.unit = "",
+           .doc = "... the distance grown by this many times the bent map's local misfit",
+           .choices = {}});
+  v.field("maps_misfit_radius", o.maps_misfit_radius,
+          {.unit = "m", .doc = "... over the gridmap's walls this near", .choices = {}});
+  v.field("maps_heading", o.maps_heading, {.unit = "rad", .doc = "Its heading", .choices = {}});
   v.field("consistency_scans", o.consistency_scans,
           {.unit = "scans",
            .doc = "Consecutive disagreeing scans before the plan filter is re-initialized",
@@ -848,6 +860,17 @@ void visit(OptionVisitor& v, ScaleSearchOptions& o) {
           {.unit = "", .doc = "Profile steps each way", .choices = {}});
   v.field("profile_scans", o.profile_scans,
           {.unit = "scans", .doc = "Scans profiled at most", .choices = {}});
+  v.field("maps_scans", o.maps_scans,
+          {.unit = "scans",
+           .doc = "With the maps aligned first: the scale by dead reckoning up to this many of the "
+                  "gridmap filter's sure scans on the plan from where the maps put them",
+           .choices = {}});
+  v.field("maps_sigmas", o.maps_sigmas,
+          {.unit = "", .doc = "Over the maps' scale 1 +- this many spreads", .choices = {}});
+  v.field("maps_min_range", o.maps_min_range,
+          {.unit = "", .doc = "... at least this share", .choices = {}});
+  v.field("maps_max_range", o.maps_max_range,
+          {.unit = "", .doc = "... at most this share", .choices = {}});
 }
 
 void visit(OptionVisitor& v, MapCorrelationOptions& o) {
@@ -928,6 +951,21 @@ void visit(OptionVisitor& v, PlanLocationOptions& o) {
           {.unit = "",
            .doc = "Share of the plan's walls in the robot's free space under the pairs' "
                   "similarity beyond which the run fails",
+           .choices = {}});
+  v.field("start_from_maps", o.start_from_maps,
+          {.unit = "",
+           .doc = "Start the run from the maps' alignment when it was accepted (its bent map "
+                  "places the plan filter, its scale seeds the search)",
+           .choices = {}});
+  v.field("maps_start_sigma", o.maps_start_sigma,
+          {.unit = "m",
+           .doc = "Plan filter's first spread around the pose the maps give (world metres)",
+           .choices = {}});
+  v.field("maps_start_heading_sigma", o.maps_start_heading_sigma,
+          {.unit = "rad", .doc = "Its heading spread", .choices = {}});
+  v.field("maps_min_scale_share", o.maps_min_scale_share,
+          {.unit = "",
+           .doc = "The scale search's first spread around the maps' scale, at least this share",
            .choices = {}});
   v.field("given_start_sigma", o.given_start_sigma,
           {.unit = "m", .doc = "Plan filter's first spread around a given start", .choices = {}});
@@ -1031,6 +1069,50 @@ void visit(OptionVisitor& v, ModelComparisonOptions& o) {
            .choices = {}});
   v.field("back_and_forth_points", o.back_and_forth_points,
           {.unit = "", .doc = "Domain points followed", .choices = {}});
+  v.field("ideal_pairs", o.ideal_pairs,
+          {.unit = "",
+           .doc = "With a truth, also fit each model on ideal pairs (the truth at the pairs' plan "
+                  "points) and judge it: the pairs' own loss",
+           .choices = {}});
+}
+
+void visit(OptionVisitor& v, PairSourceOptions& o) {
+  v.field("coverage_radius", o.coverage_radius,
+          {.unit = "m",
+           .doc = "A gridmap wall point this near a pair's grid point is covered by the pairs",
+           .choices = {}});
+  v.field("min_coverage", o.min_coverage,
+          {.unit = "",
+           .doc = "Share of the gridmap's walls the run's pairs must cover",
+           .choices = {}});
+  v.field("min_pair_scans", o.min_pair_scans,
+          {.unit = "scans", .doc = "Scans the run's pairs must come from...", .choices = {}});
+  v.field("min_pair_scan_share", o.min_pair_scan_share,
+          {.unit = "", .doc = "... or this share of the log's scans when fewer", .choices = {}});
+  v.field("disagreement_sigmas", o.disagreement_sigmas,
+          {.unit = "",
+           .doc = "The run's pairs agree with the maps' bent map when their median distance "
+                  "through it is within this many of their stated uncertainty (the pairs' noise "
+                  "and the bent map's scale spread over the pairs' extent)",
+           .choices = {}});
+  v.field("min_disagreement_tolerance", o.min_disagreement_tolerance,
+          {.unit = "m", .doc = "... at least this", .choices = {}});
+  v.field("scale_sigmas", o.scale_sigmas,
+          {.unit = "",
+           .doc = "... and their scales differ by at most this many of the maps' scale spread",
+           .choices = {}});
+  v.field("min_scale_tolerance", o.min_scale_tolerance,
+          {.unit = "", .doc = "... or this share of the scale, when more", .choices = {}});
+  v.field("fill_radius", o.fill_radius,
+          {.unit = "m",
+           .doc = "When the run's pairs are used and agree with the maps', the maps' pairs "
+                  "farther than this from every run pair are added (0: none)",
+           .choices = {}});
+  v.field("maps_match_margin", o.maps_match_margin,
+          {.unit = "",
+           .doc = "When they disagree, the maps' pairs are used only when the plan-match check "
+                  "scores them higher by more than this",
+           .choices = {}});
 }
 
 void visit(OptionVisitor& v, DualLocalizerOptions& o) {
@@ -1141,9 +1223,13 @@ void visit(OptionVisitor& v, AlignmentOptions& o) {
              "Where the pairs come from: the robot's run, the two maps alone, or both (a "
              "dataset without a log: the maps)");
   v.group("maps_only",
-          "Pairs from the maps alone (no log, or --pairs-from maps|both): registration, then a "
-          "non-rigid refinement",
+          "The maps aligned (first, always; the pairs with no log, or --pairs-from maps|both): "
+          "registration, then a non-rigid refinement",
           [&] { visit(v, o.maps_only); });
+  v.group("sources",
+          "The run's pairs judged on their own and against the maps' alignment, and which are "
+          "used",
+          [&] { visit(v, o.sources); });
   v.field("near_pairs", o.near_pairs,
           {.unit = "m",
            .doc = "Wall distances are also summarized over the plan wall points this close to a "

@@ -149,14 +149,14 @@ std::string no_alignment_message(const MapAlignment& m) {
 
 // The maps aligned (align_maps), with a note of what it found for the localization's story.
 MapAlignment align_on_maps(const AlignmentInputs& in, const AlignmentOptions& options,
-                           DualLocalization& l) {
+                           std::vector<std::string>& notes) {
   MapAlignment m =
       align_maps(in.gridmap, in.plan_grid, plan_walls_of(in.plan),
                  options.localization.plan_location.map_registration, options.maps_only);
   const MapSimilarity& s = m.registration.best.transform;
   if (m.registration.found) {
-    l.notes.push_back(fmt::format(
-        "maps only: the gridmap registered on the plan at scale {:.4f}, turned {:.1f} deg, score "
+    notes.push_back(fmt::format(
+        "maps: the gridmap registered on the plan at scale {:.4f}, turned {:.1f} deg, score "
         "{:.2f} (runner-up {:.2f}), then bent onto it in {} stages: {} of {} gridmap wall points "
         "(on a straight wall) within {:.2f} m of a plan wall became pairs; fitness {:.2f} ({:.0f}% "
         "of the gridmap's "
@@ -166,26 +166,31 @@ MapAlignment align_on_maps(const AlignmentInputs& in, const AlignmentOptions& op
         options.maps_only.pair_radius, m.fit.score, 100.0 * m.fit.on_walls,
         100.0 * m.fit.in_free_space, m.seconds));
     if (m.runner_up) {
-      l.notes.push_back(fmt::format(
-          "maps only: the best other place, bent as well, has fitness {:.2f} (scale {:.4f}, "
+      notes.push_back(fmt::format(
+          "maps: the best other place, bent as well, has fitness {:.2f} (scale {:.4f}, "
           "turned {:.1f} deg)",
           m.runner_up->fit.score, m.runner_up->start.scale,
           m.runner_up->start.theta * 180.0 / std::numbers::pi));
     }
   }
   if (!m.accepted)
-    l.notes.push_back(no_alignment_message(m));
+    notes.push_back(no_alignment_message(m));
   return m;
+}
+
+// The plan scale the maps give: their registration's, with the bent map's spread of it.
+void set_maps_scale(const MapAlignment& m, DualLocalization& l) {
+  l.plan_scale = 1.0 / m.registration.best.transform.scale;
+  l.plan_scale_std = l.plan_scale * m.scale.relative_std;
+  l.plan_scale_estimated = true;
 }
 
 // The localization from the maps alone: their alignment's pairs and scale, or why none.
 void localize_on_maps(const AlignmentInputs& in, const AlignmentOptions& options, Alignment& a) {
   DualLocalization& l = a.localization;
-  a.maps = align_on_maps(in, options, l);
-  if (a.maps->registration.found) {
-    l.plan_scale = 1.0 / a.maps->registration.best.transform.scale;
-    l.plan_scale_estimated = true;
-  }
+  a.maps = align_on_maps(in, options, l.notes);
+  if (a.maps->registration.found)
+    set_maps_scale(*a.maps, l);
   if (a.maps->accepted) {
     l.pairs = a.maps->pairs;
     return;
@@ -218,12 +223,101 @@ void append_pairs(ReferencePairs& to, const ReferencePairs& from) {
 void judge_alignment(const AlignmentInputs& in, const AlignmentOptions& options, Alignment& a,
                      const AlignmentProgressCallback& progress);
 
+// The plan match under `pairs` (plan_match.hpp), as align judges every source.
+PlanMatch plan_match_of(const AlignmentInputs& in, const AlignmentOptions& options,
+                        const ReferencePairs& pairs) {
+  return judge_plan_match(in.gridmap, in.plan_grid, plan_walls_of(in.plan), pairs,
+                          options.localization.plan_location.map_registration);
+}
+
+// The maps' pairs instead of the run's: no wall slide or pair noise (no visits to compare),
+// the maps' scale, and why.
+void use_maps_pairs(Alignment& a, const std::string& why) {
+  DualLocalization& l = a.localization;
+  l.pairs = a.maps->pairs;
+  l.status = {};
+  set_maps_scale(*a.maps, l);
+  a.localized_pairs = {};
+  a.wall_slide.reset();
+  a.pair_noise.reset();
+  a.localized_pair_errors.reset();
+  a.pairs_from = PairSource::maps;
+  l.notes.push_back("the maps' pairs are used instead of the run's: " + why);
+}
+
+// Which pairs the job goes on with: the run's judged on their own (the plan match, how much of
+// the building they cover) and against the maps' alignment; the maps' when only they pass or
+// the plan match prefers them; none (the job fails) when neither passes.
+void choose_pair_source(const AlignmentInputs& in, const AlignmentOptions& options,
+                        Alignment& a) {
+  DualLocalization& l = a.localization;
+  const PlanLocationOptions& location = options.localization.plan_location;
+  RunPairsSummary run{.localized = l.status.ok,
+                      .failure = l.status.message,
+                      .pairs = &l.pairs,
+                      .plan_scale = l.plan_scale,
+                      .noise_m = a.pair_noise ? std::sqrt(a.pair_noise->mean_square_m2) : 0.0,
+                      .pair_scans = 0,
+                      .scans = l.scans.size(),
+                      .match = {},
+                      .match_accepted = false};
+  for (const ScanRecord& r : l.scans)
+    run.pair_scans += r.pairs > 0;
+  if (run.localized && l.pairs.size() >= 3) {
+    run.match = plan_match_of(in, options, l.pairs);
+    run.match_accepted =
+        plan_match_accepted(run.match, location.min_plan_match, location.max_plan_walls_in_free_space);
+  }
+  a.sources = check_pair_sources(run, &*a.maps, in.gridmap, options.sources,
+                                 [&](const ReferencePairs& pairs) {
+                                   return plan_match_of(in, options, pairs);
+                                 });
+  const PairSourceCheck& c = *a.sources;
+  if (c.chosen == "maps") {
+    use_maps_pairs(a, c.fallback);
+    return;
+  }
+  if (c.chosen == "run") {
+    a.plan_match = run.match;
+    // Every maps' pair with --pairs-from both; else those where the run's do not reach.
+    const ReferencePairs& added =
+        a.pairs_from == PairSource::both && a.maps->accepted ? a.maps->pairs : c.fill;
+    if (added.size() > 0) {
+      append_pairs(l.pairs, added);
+      if (a.localized_pairs.size() > 0)
+        append_pairs(a.localized_pairs, added);
+      a.pairs_from = PairSource::both;
+      a.plan_match = plan_match_of(in, options, l.pairs);
+      if (&added == &c.fill) {
+        l.notes.push_back(fmt::format(
+            "{} of the maps' pairs added where no run pair lies within {:.1f} m (the run agrees "
+            "with the maps: {:.2f} m apart at the median)",
+            added.size(), options.sources.fill_radius, c.disagreement_median_m));
+      }
+    }
+    return;
+  }
+  // Neither passed. A run that made pairs keeps its plan match for the report; one whose pairs
+  // pass that check but cannot vouch for the building fails here, with both reasons.
+  a.plan_match = run.match;
+  if (l.status.ok && run.match_accepted) {
+    l.status = {false,
+                c.run_failure + "; and " + no_alignment_message(*a.maps) +
+                    ". Check that the plan and the gridmap show the same floor and that the "
+                    "gridmap's resolution is right",
+                "log"};
+  } else if (!l.status.ok) {
+    l.status.message += ". The maps alone did not align either: " + no_alignment_message(*a.maps);
+  }
+}
+
 }  // namespace
 
 Alignment align(const AlignmentInputs& in, const AlignmentOptions& options,
                 const AlignmentProgressCallback& progress) {
   validate(options.wall_slide);
   validate(options.maps_only);
+  validate(options.sources);
   Alignment a;
   a.pairs_from = in.log.scans.empty() ? PairSource::maps : options.pairs_from;
   if (a.pairs_from == PairSource::maps) {
@@ -234,20 +328,26 @@ Alignment align(const AlignmentInputs& in, const AlignmentOptions& options,
       judge_alignment(in, options, a, progress);
     return a;
   }
+  // The maps first: their alignment seeds the run, checks its pairs and stands in for them.
+  if (progress)
+    progress({"localize", "maps", 0, 1});
+  std::vector<std::string> maps_notes;
+  a.maps = align_on_maps(in, options, maps_notes);
   // The reference pairs, by dual Monte Carlo localization.
   a.localization = localize_dual({.plan = in.plan_grid,
                                   .gridmap = in.gridmap,
                                   .log = in.log,
                                   .start = in.start,
                                   .plan_scale = in.plan_scale,
-                                  .plan_geometry = in.plan},
+                                  .plan_geometry = in.plan,
+                                  .maps = &*a.maps},
                                  options.localization, [&](const DualProgress& p) {
                                    if (progress)
                                      progress({"localize", p.phase, p.scan, p.scans});
                                  });
-  if (!a.localization.status.ok)
-    return a;
-  if (options.wall_slide.iterations > 0 && a.localization.pairs.size() > 0) {
+  a.localization.notes.insert(a.localization.notes.begin(), maps_notes.begin(), maps_notes.end());
+  if (a.localization.status.ok && options.wall_slide.iterations > 0 &&
+      a.localization.pairs.size() > 0) {
     if (progress)
       progress({"fit", "wall slide", 0, 1});
     const auto slide_start = Clock::now();
@@ -262,19 +362,12 @@ Alignment align(const AlignmentInputs& in, const AlignmentOptions& options,
     a.wall_slide_seconds = seconds_since(slide_start);
   }
   // The pairs' noise is the run's: the maps' pairs have no visits to compare.
-  const bool slid = a.localized_pairs.size() > 0;
-  a.pair_noise = pair_noise(slid ? a.localized_pairs : a.localization.pairs);
-  if (a.pairs_from == PairSource::both) {
-    if (progress)
-      progress({"localize", "maps", 0, 1});
-    a.maps = align_on_maps(in, options, a.localization);
-    if (a.maps->accepted) {
-      append_pairs(a.localization.pairs, a.maps->pairs);
-      if (slid)
-        append_pairs(a.localized_pairs, a.maps->pairs);
-    }
-  }
-  judge_alignment(in, options, a, progress);
+  if (a.localization.status.ok)
+    a.pair_noise = pair_noise(a.localized_pairs.size() > 0 ? a.localized_pairs
+                                                           : a.localization.pairs);
+  choose_pair_source(in, options, a);
+  if (a.localization.status.ok)
+    judge_alignment(in, options, a, progress);
   return a;
 }
 
@@ -291,9 +384,8 @@ void judge_alignment(const AlignmentInputs& in, const AlignmentOptions& options,
   if (in.truth_warp && a.localized_pairs.size() > 0)
     a.localized_pair_errors = pair_errors(a.localized_pairs, in.truth_warp);
 
-  a.plan_match =
-      judge_plan_match(in.gridmap, in.plan_grid, plan_walls_of(in.plan), a.localization.pairs,
-                       options.localization.plan_location.map_registration);
+  if (!a.plan_match.judged)
+    a.plan_match = plan_match_of(in, options, a.localization.pairs);
 
   // Every model, fitted and judged: not on pairs between two different buildings.
   const PlanLocationOptions& location = options.localization.plan_location;

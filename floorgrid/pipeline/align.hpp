@@ -12,6 +12,7 @@
 #include "floorgrid/mapping/pair_noise.hpp"
 #include "floorgrid/pipeline/dual_localizer.hpp"
 #include "floorgrid/pipeline/map_alignment.hpp"
+#include "floorgrid/pipeline/pair_sources.hpp"
 #include "floorgrid/pipeline/plan_match.hpp"
 #include "floorgrid/pipeline/wall_slide.hpp"
 
@@ -50,8 +51,11 @@ struct AlignmentOptions {
   WallSlideOptions wall_slide;
   /// Where the pairs come from (a dataset without a log: the maps, whatever this says).
   PairSource pairs_from = PairSource::run;
-  /// How the maps are aligned when the pairs come from them.
+  /// How the maps are aligned (first, always: they seed and check the run, and their pairs
+  /// stand in when the run's fail).
   MapAlignmentOptions maps_only;
+  /// How the run's pairs are judged against the maps' alignment, and which are used.
+  PairSourceOptions sources;
   /// Metres: wall distances are also summarized over the plan wall points this close to a
   /// pair (where the models have data).
   double near_pairs = 2.0;
@@ -93,9 +97,11 @@ struct Alignment {
   /// The pairs as the filters made them, before the wall slide (empty when none slid).
   ReferencePairs localized_pairs;
   PairSource pairs_from = PairSource::run;  ///< where the pairs came from
-  /// The maps' alignment, when pairs came from it (its `pairs` are in localization.pairs, or
-  /// appended to the run's there).
+  /// The maps' alignment (made first, whatever the source; its `pairs` are in
+  /// localization.pairs when the pairs came from it, or appended to the run's there).
   std::optional<MapAlignment> maps;
+  /// With a run: its pairs judged on their own and against the maps', and which were used.
+  std::optional<PairSourceCheck> sources;
   /// What the wall slide did (its `pairs` left empty: they are localization.pairs).
   std::optional<WallSlide> wall_slide;
   double wall_slide_seconds = 0.0;  ///< of the wall slide

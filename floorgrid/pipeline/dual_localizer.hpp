@@ -16,6 +16,7 @@
 #include "floorgrid/maps/vector_floorplan.hpp"
 #include "floorgrid/maps/visible_walls.hpp"
 #include "floorgrid/pipeline/filter_runner.hpp"
+#include "floorgrid/pipeline/map_alignment.hpp"
 #include "floorgrid/pipeline/map_registration.hpp"
 #include "floorgrid/pipeline/outlier_scans.hpp"
 #include "floorgrid/pipeline/plan_registration.hpp"
@@ -41,6 +42,9 @@ struct DualLocalizerInputs {
   /// A DXF plan's walls in the plan grid's frame, or null: scans are then matched onto these
   /// exact walls instead of the plan grid's occupied cells.
   const VectorFloorplan* plan_geometry = nullptr;
+  /// The two maps aligned before the run (align_maps), or null: its registration replaces the
+  /// run's own, and when it was accepted its bent map seeds the run (see PlanLocationOptions).
+  const MapAlignment* maps = nullptr;
 };
 
 /// The observation model a filter uses.
@@ -134,6 +138,16 @@ struct PlanLocationOptions {
   /// lie where the robot saw free space: the right plan 0.00-0.05 (fr079's drawing), a run
   /// whose pairs were 5 m off along Seattle's corridor 0.25 (scoring 0.23).
   double max_plan_walls_in_free_space = 0.15;
+  /// With the maps aligned first and their alignment accepted (DualLocalizerInputs::maps), the
+  /// run starts from it: the plan filter where the bent map puts the gridmap filter's pose,
+  /// with these spreads (world metres and radians: a prior, not a constraint, so that a
+  /// drawing wrong in places is still followed), the scale searched from the maps' scale with
+  /// their spread (at least maps_min_scale_share of it), and the dual check's global
+  /// registration the bent map rather than one similarity.
+  bool start_from_maps = true;
+  double maps_start_sigma = 0.5;
+  double maps_start_heading_sigma = 0.15;  ///< radians
+  double maps_min_scale_share = 0.01;
   /// Plan metres and radians: the plan filter's first spread around a given start pose...
   double given_start_sigma = 0.2;
   double given_start_heading_sigma = 0.1;  ///< radians
@@ -156,6 +170,16 @@ struct ScaleSearchOptions {
   /// which counts only endpoints exactly on walls.
   ObservationModelKind model = ObservationModelKind::likelihood_field;
   ObservationOptions observation{.max_beams = 30};  ///< beams per scan of the search
+  /// With the maps aligned first (and no clear registration), no particle searches the
+  /// scale: up to maps_scans of the gridmap filter's sure scans are dead-reckoned on the plan
+  /// (search_plan_scale_from_maps) at scales over the maps' scale times 1 +- (maps_sigmas
+  /// times its spread, within maps_min_range..maps_max_range) in profile_steps steps each
+  /// way, then finer around the best; the scale meeting the most walls is kept through the
+  /// run. The same maps and gridmap poses give the same scale, whatever the seed.
+  std::size_t maps_scans = 600;
+  double maps_sigmas = 3.0;
+  double maps_min_range = 0.03;
+  double maps_max_range = 0.15;
   /// Random walk of the scale during the search, per square root of a metre travelled.
   double walk = 0.01;
   int scans = 300;  ///< scans of the search after the plan filter started
@@ -194,6 +218,18 @@ struct DualCheckOptions {
   /// one similarity for the whole plan), which also judges the pairs then.
   double consistency_distance = 3.0;
   double consistency_heading = 0.5;  ///< radians
+  /// With the maps' bent map as the global registration (the maps aligned first), a plan pose
+  /// farther than this (world metres and radians) from where the bent map puts the gridmap
+  /// pose makes no pairs, whatever the local registration says: along a corridor the scans
+  /// cannot place the plan filter, and a local registration follows it as it slides (fr079,
+  /// one seed in three: pairs 1.6 m off at the median over a third of the building). The
+  /// distance grows by maps_misfit_factor times the bent map's local misfit (MapWarp::
+  /// local_misfit within maps_misfit_radius): where the drawing differs from the building the
+  /// maps are unsure and the run may mend them.
+  double maps_distance = 1.0;
+  double maps_misfit_factor = 3.0;
+  double maps_misfit_radius = 3.0;  ///< world metres
+  double maps_heading = 0.3;  ///< radians
   /// Consecutive disagreeing scans (the gridmap filter converged; the plan filter converged or
   /// not) after which the plan filter is re-initialized around the registered gridmap pose.
   int consistency_scans = 10;

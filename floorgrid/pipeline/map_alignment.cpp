@@ -8,6 +8,8 @@
 #include <numbers>
 #include <set>
 
+#include <Eigen/SVD>
+
 #include "floorgrid/core/statistics.hpp"
 #include "floorgrid/core/validation.hpp"
 #include "floorgrid/geometry/displacement_lattice.hpp"
@@ -44,22 +46,7 @@ std::vector<WallPoint> spaced_wall_points(const OccupancyGrid& grid,
   return points;
 }
 
-// The gridmap mapped into the plan: the similarity, then the lattice's displacement there.
-struct PlanWarp {
-  MapSimilarity similarity;
-  DisplacementLattice lattice;
-  int stages = 0;  // lattice stages fitted
-
-  Eigen::Vector2d start(const Eigen::Vector2d& g) const { return similarity.apply(g); }
-  Eigen::Vector2d apply(const Eigen::Vector2d& g) const {
-    const Eigen::Vector2d p0 = similarity.apply(g);
-    return p0 + lattice.at(p0);
-  }
-  // A plan point in the gridmap, to first order (the displacement is smooth and small).
-  Eigen::Vector2d inverse(const Eigen::Vector2d& p) const {
-    return similarity.inverse(p - lattice.at(p));
-  }
-};
+using PlanWarp = MapWarp;
 
 // A gridmap wall point matched to the plan's nearest wall surface: where it lies on the plan
 // now, the unit normal of that surface, and its distance to it (plan metres).
@@ -117,7 +104,7 @@ PlanWarp bend_onto_plan(const WallSurfaceField& field, const std::vector<WallPoi
         const Match m = match_to_plan(field, warp, w, radius, step, min_cosine);
         if (!m.found)
           continue;
-        const Eigen::Vector2d p0 = warp.start(w.point);
+        const Eigen::Vector2d p0 = warp.similarity.apply(w.point);
         // Move across the wall by its distance: n . D(p0) = n . (p - p0) - d (Huber-weighted).
         const double huber = std::min(1.0, radius / 3.0 / std::max(m.distance, 1e-9));
         constraints.push_back({p0, m.normal, m.normal.dot(m.at - p0) - m.distance, huber});
@@ -132,6 +119,116 @@ PlanWarp bend_onto_plan(const WallSurfaceField& field, const std::vector<WallPoi
 }
 
 }  // namespace
+
+Eigen::Vector2d MapWarp::apply(const Eigen::Vector2d& g) const {
+  const Eigen::Vector2d p0 = similarity.apply(g);
+  return stages > 0 ? Eigen::Vector2d(p0 + lattice.at(p0)) : p0;
+}
+
+Eigen::Matrix2d MapWarp::jacobian(const Eigen::Vector2d& g) const {
+  const double h = 0.05;
+  Eigen::Matrix2d J;
+  J.col(0) = (apply(Eigen::Vector2d(g + h * Eigen::Vector2d::UnitX())) -
+              apply(Eigen::Vector2d(g - h * Eigen::Vector2d::UnitX()))) /
+             (2.0 * h);
+  J.col(1) = (apply(Eigen::Vector2d(g + h * Eigen::Vector2d::UnitY())) -
+              apply(Eigen::Vector2d(g - h * Eigen::Vector2d::UnitY()))) /
+             (2.0 * h);
+  return J;
+}
+
+Eigen::Vector2d MapWarp::inverse(const Eigen::Vector2d& p) const {
+  Eigen::Vector2d g = similarity.inverse(stages > 0 ? Eigen::Vector2d(p - lattice.at(p)) : p);
+  if (stages == 0)
+    return g;
+  // The lattice is smooth and its displacement small against its spacing: a few Newton steps
+  // from the first-order inverse reach the exact one.
+  for (int i = 0; i < 8; ++i) {
+    const Eigen::Vector2d r = apply(g) - p;
+    if (r.norm() < 1e-9 * std::max(1.0, p.norm()))
+      break;
+    const Eigen::Matrix2d J = jacobian(g);
+    if (!(std::abs(J.determinant()) > 1e-12))
+      break;
+    g -= J.inverse() * r;
+  }
+  return g;
+}
+
+Pose2 MapWarp::apply(const Pose2& pose) const {
+  const Eigen::Vector2d g = pose.translation();
+  const Eigen::Vector2d heading =
+      jacobian(g) * Eigen::Vector2d(std::cos(pose.theta), std::sin(pose.theta));
+  const Eigen::Vector2d p = apply(g);
+  return {p.x(), p.y(), std::atan2(heading.y(), heading.x())};
+}
+
+Pose2 MapWarp::inverse(const Pose2& pose) const {
+  const Eigen::Vector2d g = inverse(pose.translation());
+  const Eigen::Matrix2d J = jacobian(g);
+  Eigen::Vector2d heading(std::cos(pose.theta), std::sin(pose.theta));
+  if (std::abs(J.determinant()) > 1e-12)
+    heading = J.inverse() * heading;
+  return {g.x(), g.y(), std::atan2(heading.y(), heading.x())};
+}
+
+double MapWarp::local_misfit(const Eigen::Vector2d& g, double radius) const {
+  if (!misfit_points || misfit_points->size() == 0)
+    return 0.0;
+  const std::vector<PointIndex2D::Neighbour> near = misfit_points->within(g, radius);
+  if (near.empty())
+    return 0.0;
+  double sum = 0.0;
+  for (const PointIndex2D::Neighbour& n : near)
+    sum += misfit_m[static_cast<std::size_t>(n.index)];
+  return sum / static_cast<double>(near.size());
+}
+
+WarpScale warp_scale(const MapWarp& warp, const std::vector<Eigen::Vector2d>& points) {
+  std::vector<double> scales;
+  scales.reserve(points.size());
+  for (const Eigen::Vector2d& g : points) {
+    const double det = std::abs(warp.jacobian(g).determinant());
+    if (det > 0.0 && std::isfinite(det))
+      scales.push_back(1.0 / std::sqrt(det));
+  }
+  WarpScale s{1.0 / warp.similarity.scale, 0.0, 1.0 / warp.similarity.scale};
+  if (scales.empty())
+    return s;
+  {
+    // Umeyama's scale: sqrt(sum |q - q_mean|^2 / sum |p - p_mean|^2) after the best rotation,
+    // i.e. trace(S) / sum |g - g_mean|^2 with S the singular values of the cross-covariance.
+    Eigen::Vector2d g_mean = Eigen::Vector2d::Zero(), p_mean = Eigen::Vector2d::Zero();
+    std::vector<Eigen::Vector2d> images;
+    images.reserve(points.size());
+    for (const Eigen::Vector2d& g : points) {
+      images.push_back(warp.apply(g));
+      g_mean += g;
+      p_mean += images.back();
+    }
+    g_mean /= static_cast<double>(points.size());
+    p_mean /= static_cast<double>(points.size());
+    Eigen::Matrix2d cross = Eigen::Matrix2d::Zero();
+    double spread = 0.0;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const Eigen::Vector2d dg = points[i] - g_mean;
+      cross += (images[i] - p_mean) * dg.transpose();
+      spread += dg.squaredNorm();
+    }
+    const Eigen::JacobiSVD<Eigen::Matrix2d> svd(cross);
+    const double plan_per_world =
+        (svd.singularValues().sum()) / std::max(spread, 1e-300);  // no reflection: both > 0
+    if (plan_per_world > 0.0 && std::isfinite(plan_per_world))
+      s.similarity_scale = 1.0 / plan_per_world;
+  }
+  s.scale = median(scales);
+  std::vector<double> deviations;
+  deviations.reserve(scales.size());
+  for (const double v : scales)
+    deviations.push_back(std::abs(v - s.scale));
+  s.relative_std = 1.4826 * median(deviations) / s.scale;
+  return s;
+}
 
 void validate(const MapAlignmentOptions& o, const std::string& prefix) {
   const auto positive = [&](double value, const char* field) {
@@ -193,6 +290,20 @@ MapAlignment align_maps(const OccupancyGrid& gridmap, const OccupancyGrid& plan,
   };
   const PlanWarp warp = bend(a.registration.best.transform);
   a.stages = warp.stages;
+  a.warp = warp;
+  {
+    std::vector<Eigen::Vector2d> at;
+    at.reserve(points.size());
+    Eigen::Matrix2Xd where(2, static_cast<Eigen::Index>(points.size()));
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      at.push_back(points[i].point);
+      where.col(static_cast<Eigen::Index>(i)) = points[i].point;
+      a.warp->misfit_m.push_back(field.distance(warp.apply(points[i].point)) /
+                                 warp.similarity.scale);
+    }
+    a.warp->misfit_points = std::make_shared<const PointIndex2D>(where);
+    a.scale = warp_scale(warp, at);
+  }
   a.fit = fit_of(warp);
   // The other places the registration found, bent too: how near the best of them comes.
   for (const ScoredSimilarity& other : a.registration.alternatives) {

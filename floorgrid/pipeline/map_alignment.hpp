@@ -3,6 +3,11 @@
 #include <optional>
 #include <string>
 
+#include <memory>
+
+#include "floorgrid/geometry/displacement_lattice.hpp"
+#include "floorgrid/geometry/point_index.hpp"
+#include "floorgrid/geometry/pose2.hpp"
 #include "floorgrid/geometry/reference_pairs.hpp"
 #include "floorgrid/maps/occupancy_grid.hpp"
 #include "floorgrid/pipeline/map_registration.hpp"
@@ -54,6 +59,49 @@ struct MapAlignmentOptions {
 /// Checks `options`; throws InputError naming `<prefix><field>`.
 void validate(const MapAlignmentOptions& options, const std::string& prefix = "align.maps_only.");
 
+/// The gridmap mapped into the plan as the maps' alignment bent it: the registration's
+/// similarity, then a smooth displacement lattice in the plan frame (world metres -> plan metres).
+struct MapWarp {
+  MapSimilarity similarity;  ///< the registration's similarity
+  /// The displacement (plan metres) added after the similarity, as a function of its result.
+  DisplacementLattice lattice{Eigen::AlignedBox2d(Eigen::Vector2d::Zero(), Eigen::Vector2d::Ones()),
+                              1.0};
+  int stages = 0;  ///< lattice stages fitted (0: the similarity alone)
+  /// Where the bent map does not fit: the gridmap's wall points (gridmap metres) and, for each,
+  /// the world metres from its image to the nearest plan wall (capped), from align_maps.
+  std::shared_ptr<const PointIndex2D> misfit_points;
+  std::vector<double> misfit_m;
+
+  /// A gridmap point in the plan: similarity, then the lattice's displacement there.
+  Eigen::Vector2d apply(const Eigen::Vector2d& g) const;
+  /// A plan point in the gridmap: Newton steps on `apply` from its first-order inverse.
+  Eigen::Vector2d inverse(const Eigen::Vector2d& p) const;
+  /// A gridmap pose in the plan: its heading turned as the local Jacobian turns it.
+  Pose2 apply(const Pose2& pose) const;
+  /// A plan pose in the gridmap (the inverse of apply).
+  Pose2 inverse(const Pose2& pose) const;
+  /// d apply / d g at `g` (plan metres per world metre), by central differences over 0.1 m.
+  Eigen::Matrix2d jacobian(const Eigen::Vector2d& g) const;
+  /// How far the bent map misses the plan's walls near `g` (gridmap metres): the mean misfit
+  /// (world metres) of the gridmap wall points within `radius` of it, 0 with none or without
+  /// misfits recorded. Where the drawing differs from the building, it is large.
+  double local_misfit(const Eigen::Vector2d& g, double radius) const;
+};
+
+/// The warp's scale (world metres per plan metre, as floorplan_scale) over `points` (gridmap
+/// metres): the median of the local scales 1 / sqrt(det J), and their spread (a robust standard
+/// deviation: 1.4826 times the median absolute deviation, relative to the median). A bent or
+/// locally misdrawn plan has no single scale: the spread says how far one global scale may be
+/// off at a place.
+struct WarpScale {
+  double scale = 1.0;         ///< world metres per plan metre, the median
+  double relative_std = 0.0;  ///< spread, a share of `scale`
+  /// The scale of the least-squares similarity from the points to their images (world metres
+  /// per plan metre): the bent map's global scale, as a global fit over the building sees it.
+  double similarity_scale = 1.0;
+};
+WarpScale warp_scale(const MapWarp& warp, const std::vector<Eigen::Vector2d>& points);
+
 /// What align_maps found.
 struct MapAlignment {
   MapRegistration registration;  ///< the global similarity it started from
@@ -74,6 +122,10 @@ struct MapAlignment {
   /// fitness is not positive): near 1, another place fits as well.
   double ambiguity = 0.0;
   MapAlignmentOptions options;  ///< what it ran with and was judged by
+  /// The best registration bent onto the plan (unset when nothing was registered).
+  std::optional<MapWarp> warp;
+  /// Its scale and spread over the gridmap wall points it was bent on.
+  WarpScale scale;
   /// fit.score >= min_fitness, fit.on_walls >= min_on_walls, ambiguity < max_ambiguity and at
   /// least 3 pairs
   bool accepted = false;

@@ -1,7 +1,10 @@
 #include "floorgrid/pipeline/plan_location.hpp"
 
+#include "floorgrid/pipeline/plan_scale_search.hpp"
+
 #include <fmt/format.h>
 
+#include <memory>
 #include <numbers>
 #include <optional>
 
@@ -46,15 +49,18 @@ TrackingStart plan_start(const Pose2& pose, double position_sigma, double headin
 namespace {
 
 // The scales to search: around the direct registration of the gridmap on the plan when it is
-// clear, else the options' range.
+// clear, else the options' range. The maps' registration is the one align_maps made when the
+// maps were aligned first, else one made here.
 ScaleRange scale_range(const DualMaps& maps, const DualLocalizerInputs& inputs,
                        const DualLocalizerOptions& options, DualLocalization& result,
                        std::optional<MapSimilarity>& clear) {
   const PlanLocationOptions& step = options.plan_location;
   if (inputs.plan_scale || !step.register_maps)
     return options.scale_search.range;
-  const MapRegistration reg = register_maps(
-      maps.gridmap(), inputs.plan, plan_walls_of(inputs.plan_geometry), step.map_registration);
+  const MapRegistration reg =
+      inputs.maps ? inputs.maps->registration
+                  : register_maps(maps.gridmap(), inputs.plan, plan_walls_of(inputs.plan_geometry),
+                                  step.map_registration);
   if (!reg.found || reg.best.score < step.map_min_score) {
     result.notes.push_back(
         fmt::format("the gridmap could not be registered on the plan directly ({} candidates, best "
@@ -85,6 +91,27 @@ ScaleRange scale_range(const DualMaps& maps, const DualLocalizerInputs& inputs,
   return {scale / (1.0 + step.map_scale_margin), scale * (1.0 + step.map_scale_margin)};
 }
 
+// The maps' accepted alignment, when the run may start from it.
+const MapAlignment* maps_prior(const DualLocalizerInputs& inputs, const PlanLocationOptions& step) {
+  if (!step.start_from_maps || !inputs.maps || !inputs.maps->accepted || !inputs.maps->warp)
+    return nullptr;
+  return inputs.maps;
+}
+
+// The plan scale as a clear registration gives it, kept through the run (not refitted).
+void keep_registration_scale(const MapSimilarity& clear, PlanLocation& location,
+                             DualLocalization& result) {
+  location.keep_scale = true;
+  location.scale = 1.0 / clear.scale;
+  location.scale_sigma = 0.0;
+  result.plan_scale_estimated = true;
+  result.plan_scale_search = location.scale;
+  // The registration gives no spread of its scale: none is claimed (0), and the note says so.
+  result.plan_scale_search_std = 0.0;
+  result.plan_scale_std = 0.0;
+  result.notes.push_back("the plan scale's uncertainty is not estimated (taken from the maps)");
+}
+
 }  // namespace
 
 PlanLocation locate_run_on_plan(const DualMaps& maps, const DualLocalizerInputs& inputs,
@@ -101,23 +128,40 @@ PlanLocation locate_run_on_plan(const DualMaps& maps, const DualLocalizerInputs&
       inputs.plan_scale ? 0.0 : options.scale_search.initial_sigma_share * (range.max - range.min);
   const Pose2 grid_start =
       location.given ? location.given->grid : result.scans[*gridmap.first_converged].grid.pose;
-  if (!location.given && clear) {
+  const MapAlignment* prior = maps_prior(inputs, step);
+  if (!location.given && prior) {
+    // The maps were aligned first: the plan filter starts where their bent map puts the
+    // gridmap filter's pose, and the dual check judges the plan filter by that map.
+    const auto warp = std::make_shared<const MapWarp>(*prior->warp);
+    location.from_maps = true;
+    if (clear) {
+      keep_registration_scale(*clear, location, result);  // (see scale_range)
+    } else if (!inputs.plan_scale) {
+      // ... fitted on the run's scans placed on the plan by the bent map, from its scale within
+      // its spread: a drawing wrong in places, or a bent gridmap, has no one scale.
+      location.scale = prior->scale.scale;
+      search_plan_scale_from_maps(maps, inputs.log, options, *warp, prior->scale.scale,
+                                  std::max(prior->scale.relative_std, step.maps_min_scale_share),
+                                  location, result);
+    }
+    location.registration = PlanRegistration(warp, location.scale);
+    location.start_sigma = step.maps_start_sigma / location.scale;
+    location.start_heading_sigma = step.maps_start_heading_sigma;
+    result.plan_start_scan = result.grid_start_scan;
+    result.notes.push_back(fmt::format(
+        "the run starts from the maps' alignment: scale {:.4f} (+- {:.1f}% over the bent map; "
+        "its least-squares similarity {:.4f}), the plan filter where it puts the gridmap "
+        "filter's pose",
+        prior->scale.scale, 100.0 * prior->scale.relative_std, prior->scale.similarity_scale));
+  } else if (!location.given && clear) {
     // The maps agree on one similarity: the plan filter starts where it puts the gridmap
     // filter's pose, at its scale.
     location.from_maps = true;
-    location.keep_scale = true;
-    location.scale = 1.0 / clear->scale;
-    location.scale_sigma = 0.0;
+    keep_registration_scale(*clear, location, result);
     location.registration = PlanRegistration(grid_start, clear->apply(grid_start), location.scale);
     location.start_sigma = step.given_start_sigma;
     location.start_heading_sigma = step.given_start_heading_sigma;
     result.plan_start_scan = result.grid_start_scan;
-    result.plan_scale_estimated = true;
-    result.plan_scale_search = location.scale;
-    // The registration gives no spread of its scale: none is claimed (0), and the note says so.
-    result.plan_scale_search_std = 0.0;
-    result.plan_scale_std = 0.0;
-    result.notes.push_back("the plan scale's uncertainty is not estimated (taken from the maps)");
   } else if (location.given) {
     location.registration = registration_of(*location.given, location.scale);
     location.start_sigma = step.given_start_sigma;

@@ -55,11 +55,15 @@ ScanObservation build_submap(const RobotLog& log, std::span<const std::size_t> s
 }
 
 Pose2 PlanRegistration::plan_pose(const Pose2& pose_in_map) const {
+  if (warp_)
+    return warp_->apply(pose_in_map);
   const Pose2 relative = origin_in_map_.between(pose_in_map);  // world metres
   return origin_in_plan_.compose({relative.x / scale_, relative.y / scale_, relative.theta});
 }
 
 Pose2 PlanRegistration::map_pose(const Pose2& pose_in_plan) const {
+  if (warp_)
+    return warp_->inverse(pose_in_plan);
   const Pose2 relative = origin_in_plan_.between(pose_in_plan);  // plan metres
   return origin_in_map_.compose({relative.x * scale_, relative.y * scale_, relative.theta});
 }

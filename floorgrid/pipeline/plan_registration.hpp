@@ -2,6 +2,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <span>
 #include <vector>
@@ -12,6 +13,7 @@
 #include "floorgrid/localization/particle_initialization.hpp"
 #include "floorgrid/localization/scan_observation.hpp"
 #include "floorgrid/maps/occupancy_grid.hpp"
+#include "floorgrid/pipeline/map_alignment.hpp"
 #include "floorgrid/robot/robot_log.hpp"
 
 namespace floorgrid {
@@ -61,6 +63,10 @@ class PlanRegistration {
   /// `scale` world metres.
   PlanRegistration(const Pose2& origin_in_map, const Pose2& origin_in_plan, double scale)
       : origin_in_map_(origin_in_map), origin_in_plan_(origin_in_plan), scale_(scale) {}
+  /// The registration the maps' bent alignment gives: every pose mapped through `warp`
+  /// (gridmap -> plan, not one similarity), `scale` world metres per plan metre its global scale.
+  PlanRegistration(std::shared_ptr<const MapWarp> warp, double scale)
+      : scale_(scale), warp_(std::move(warp)) {}
 
   /// The plan pose of a pose in the map (world metres).
   Pose2 plan_pose(const Pose2& pose_in_map) const;
@@ -68,6 +74,8 @@ class PlanRegistration {
   Pose2 map_pose(const Pose2& pose_in_plan) const;
   /// World metres per plan metre.
   double scale() const { return scale_; }
+  /// The maps' warp it maps through, or null (one similarity).
+  const MapWarp* warp() const { return warp_.get(); }
   /// The registered robot pose in the map.
   const Pose2& origin_in_map() const { return origin_in_map_; }
   /// And its plan pose.
@@ -77,6 +85,7 @@ class PlanRegistration {
   Pose2 origin_in_map_;
   Pose2 origin_in_plan_;
   double scale_ = 1.0;
+  std::shared_ptr<const MapWarp> warp_;
 };
 
 /// The registration near the robot, from the poses of the last scans where both filters were

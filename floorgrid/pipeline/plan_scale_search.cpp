@@ -1,10 +1,14 @@
 #include "floorgrid/pipeline/plan_scale_search.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <utility>
 #include <vector>
+
+#include "floorgrid/core/statistics.hpp"
 
 namespace floorgrid {
 
@@ -137,6 +141,132 @@ void search_plan_scale(const DualMaps& maps, const RobotLog& log,
   if (location.given)
     location.registration = registration_of(*location.given, scale);
   result.scale_search_seconds = seconds_since(clock);
+}
+
+namespace {
+
+/// The sure scans the dead reckoning follows: every k-th of the gridmap filter's sure scans,
+/// with their gridmap poses.
+struct ReckonedScans {
+  std::vector<std::size_t> scans;
+  std::vector<Pose2> grid_poses;
+  std::vector<ScanObservation> observations;
+};
+
+ReckonedScans reckoned_scans(const RobotLog& log, const DualLocalization& result,
+                             const DualLocalizerOptions& options, std::size_t at_most) {
+  std::vector<std::size_t> sure;
+  for (const ScanRecord& r : result.scans) {
+    if (r.grid.converged && (!r.grid.matched || r.grid.match.ok()))
+      sure.push_back(r.scan);
+  }
+  ReckonedScans out;
+  const std::size_t every = std::max<std::size_t>(1, (sure.size() + at_most - 1) / std::max<std::size_t>(1, at_most));
+  for (std::size_t k = 0; k < sure.size(); k += every) {
+    const ScanRecord& r = result.scans[sure[k]];
+    out.scans.push_back(r.scan);
+    out.grid_poses.push_back(r.grid.matched ? r.grid.match.pose : r.grid.pose);
+    out.observations.push_back(
+        make_observation(log.scans[r.scan], options.plan.runner.match_observation));
+  }
+  return out;
+}
+
+/// Dead reckoning on the plan at one scale: from where the maps put the first scan, each scan
+/// is predicted by the gridmap filter's motion since the last (world metres over `scale`) and
+/// matched onto the plan's walls; the endpoints that land on them are counted. Along a corridor
+/// a scan cannot place the robot, so a wrong scale carries it past the door frames and corners
+/// the next scans should meet: the right scale meets the most.
+std::size_t reckoned_inliers(const DualMaps& maps, const ReckonedScans& run, const MapWarp& warp,
+                             double scale, const DualLocalizerOptions& options) {
+  const ScanMatchOptions& match = options.plan.runner.match;
+  std::size_t inliers = 0;
+  Pose2 plan = warp.apply(run.grid_poses.front());
+  for (std::size_t k = 0; k < run.scans.size(); ++k) {
+    if (k > 0) {
+      const Pose2 step = run.grid_poses[k - 1].between(run.grid_poses[k]);
+      plan = plan.compose({step.x / scale, step.y / scale, step.theta});
+    }
+    const ScanMatch m =
+        maps.plan_rays()
+            ? match_scan(maps.plan_walls(), run.observations[k], plan, scale, match,
+                         *maps.plan_rays(), options.plan.runner.beam_tolerance)
+            : match_scan(maps.plan_walls(), run.observations[k], plan, scale, match);
+    if (m.ok()) {
+      plan = m.pose;
+      inliers += m.inliers;
+    }
+  }
+  return inliers;
+}
+
+/// The candidate whose dead reckoning meets the most walls, refined by a parabola through it
+/// and its neighbours.
+double best_of(const std::vector<double>& scales, const std::vector<std::size_t>& inliers) {
+  const std::size_t b = static_cast<std::size_t>(
+      std::max_element(inliers.begin(), inliers.end()) - inliers.begin());
+  if (b == 0 || b + 1 >= scales.size())
+    return scales[b];
+  const double y0 = static_cast<double>(inliers[b - 1]), y1 = static_cast<double>(inliers[b]),
+               y2 = static_cast<double>(inliers[b + 1]);
+  const double curvature = y0 - 2.0 * y1 + y2;
+  if (!(curvature < 0.0))
+    return scales[b];
+  const double offset = std::clamp(0.5 * (y0 - y2) / curvature, -0.5, 0.5);
+  return scales[b] + offset * (scales[b + 1] - scales[b - 1]) / 2.0;
+}
+
+}  // namespace
+
+void search_plan_scale_from_maps(const DualMaps& maps, const RobotLog& log,
+                                 const DualLocalizerOptions& options, const MapWarp& warp,
+                                 double prior, double prior_relative_std, PlanLocation& location,
+                                 DualLocalization& result) {
+  const auto clock = std::chrono::steady_clock::now();
+  const ScaleSearchOptions& search = options.scale_search;
+  const ReckonedScans run = reckoned_scans(log, result, options, search.maps_scans);
+  if (run.scans.size() < options.scale_refit.min_scans) {
+    result.notes.push_back(fmt::format(
+        "too few of the gridmap filter's scans ({}) to search the plan scale on: the maps' "
+        "scale is used",
+        run.scans.size()));
+    location.scale = prior;
+    return;
+  }
+  // Coarse to fine: the maps' scale +- its spread, then around the best.
+  double centre = prior;
+  double range = std::clamp(search.maps_sigmas * prior_relative_std, search.maps_min_range,
+                            search.maps_max_range);
+  const int steps = std::max(1, search.profile_steps);
+  std::vector<double> scales;
+  std::vector<std::size_t> inliers;
+  for (int level = 0; level < 2; ++level) {
+    scales.clear();
+    for (int k = -steps; k <= steps; ++k)
+      scales.push_back(centre * (1.0 + range * k / steps));
+    inliers.assign(scales.size(), 0);
+    parallel_tasks(scales.size(), options.threads, [&](std::size_t k) {
+      inliers[k] = reckoned_inliers(maps, run, warp, scales[k], options);
+    });
+    centre = best_of(scales, inliers);
+    range = 2.0 * range / steps;
+  }
+  const double scale = centre;
+  result.notes.push_back(fmt::format(
+      "plan scale {:.4f} by dead reckoning {} of the gridmap filter's scans on the plan from "
+      "where the maps put them, over the maps' {:.4f} +- {:.1f}%",
+      scale, run.scans.size(), prior,
+      100.0 * std::clamp(search.maps_sigmas * prior_relative_std, search.maps_min_range,
+                         search.maps_max_range)));
+  location.scale = scale;
+  location.scale_sigma = 0.0;
+  location.keep_scale = true;
+  result.plan_scale_estimated = true;
+  result.plan_scale_search = scale;
+  // The profile's resolution: the scale is known to about a step of the fine lattice.
+  result.plan_scale_search_std = scale * range / 2.0;
+  result.plan_scale_std = result.plan_scale_search_std;
+  result.scale_search_seconds += seconds_since(clock);
 }
 
 }  // namespace floorgrid

@@ -1,0 +1,117 @@
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <optional>
+#include <string>
+
+#include "floorgrid/geometry/reference_pairs.hpp"
+#include "floorgrid/maps/occupancy_grid.hpp"
+#include "floorgrid/pipeline/map_alignment.hpp"
+#include "floorgrid/pipeline/plan_match.hpp"
+
+namespace floorgrid {
+
+/// How `align` weighs the run's pairs against the maps' alignment (SPEC revision 3: the maps are
+/// registered first, the two sources are checked against each other, and the run's pairs are
+/// used only when they vouch for the building).
+struct PairSourceOptions {
+  /// World metres: a gridmap wall point this near a pair's grid point is covered by the pairs.
+  double coverage_radius = 2.0;
+  /// The run's pairs must cover at least this share of the gridmap's walls...
+  double min_coverage = 0.2;
+  /// ... and come from at least this many scans, or this share of the log's scans when that is
+  /// fewer (a handful of scans agree with themselves wherever they are: they cannot vouch for a
+  /// building).
+  std::size_t min_pair_scans = 20;
+  double min_pair_scan_share = 0.25;
+  /// The run's pairs agree with the maps' bent map when the median distance (world metres)
+  /// between a pair's plan point and where the bent map puts its grid point is within their
+  /// stated uncertainty: disagreement_sigmas times the root sum of squares of the pairs' noise
+  /// (pair_noise) and the bent map's scale spread times the pairs' radius of gyration (a
+  /// drawing wrong in places is placed by the maps as far off as its local scales differ), at
+  /// least min_disagreement_tolerance. A wrong place or scale is off by metres.
+  double disagreement_sigmas = 3.0;
+  double min_disagreement_tolerance = 0.5;
+  /// ... and their scales differ by at most this many of the maps' scale spread (at least
+  /// min_scale_tolerance of the scale).
+  double scale_sigmas = 3.0;
+  double min_scale_tolerance = 0.02;
+  /// When they disagree, the maps' pairs replace the run's only when the plan-match check
+  /// scores them higher by more than this (a tie keeps the run's: their revisits measure their
+  /// noise, the maps' pairs have none).
+  double maps_match_margin = 0.02;
+  /// World metres: when the run's pairs are used and agree with the maps', the maps' pairs
+  /// farther than this from every run pair are added: they place the walls the robot never
+  /// came near (rooms it did not enter, a drawing's corner it saw only from afar), where the
+  /// models would otherwise extrapolate; near the run's they would only dilute them (0: none).
+  double fill_radius = 2.0;
+};
+
+/// Checks `options`; throws InputError naming `<prefix><field>`.
+void validate(const PairSourceOptions& options, const std::string& prefix = "align.sources.");
+
+/// The run's pairs checked on their own and against the maps' alignment.
+struct PairSourceCheck {
+  // The run.
+  bool run_localized = false;     ///< the run made pairs (its localization succeeded)
+  std::string run_failure;        ///< why the run's pairs are not used ("" when they are usable)
+  PlanMatch run_match;            ///< the plan match under the run's pairs
+  bool run_match_accepted = false;
+  double coverage = 0.0;          ///< share of the gridmap's wall points the run's pairs cover
+  std::size_t pair_scans = 0;     ///< scans that made pairs
+  std::size_t scans = 0;          ///< scans in the log
+  bool run_accepted = false;      ///< localized, plan match accepted, covering enough
+  // The maps.
+  bool maps_accepted = false;  ///< the maps' alignment was accepted (MapAlignment::accepted)
+  PlanMatch maps_match;        ///< the plan match under the maps' pairs (when both are judged)
+  // The two against each other (when both were accepted).
+  bool compared = false;
+  double disagreement_median_m = 0.0;  ///< world metres, over the run's pairs
+  double disagreement_p90_m = 0.0;     ///< world metres
+  double disagreement_tolerance_m = 0.0;  ///< how far the median may be, world metres
+  double run_scale = 0.0;              ///< the run's plan scale (world metres per plan metre)
+  double maps_scale = 0.0;             ///< the bent map's
+  double scale_tolerance = 0.0;        ///< how far apart the two may be
+  bool agree = false;
+  /// The source whose pairs are used: run, maps, or none (neither passed: the job fails).
+  std::string chosen = "none";
+  /// The maps' pairs added where the run's pairs do not reach (PairSourceOptions::fill_radius),
+  /// when the run's were chosen and agree with them.
+  ReferencePairs fill;
+  /// Why the run's pairs were not used, when the maps' were ("" otherwise).
+  std::string fallback;
+};
+
+/// The share of the gridmap's occupied cells within `radius` metres of a point of
+/// `points_in_grid`.
+double wall_coverage(const OccupancyGrid& gridmap, const Eigen::Matrix2Xd& points_in_grid,
+                     double radius);
+
+/// Everything the check needs of the run.
+struct RunPairsSummary {
+  bool localized = false;       ///< the localization succeeded
+  std::string failure;          ///< its message when not
+  const ReferencePairs* pairs;  ///< the run's pairs (plan -> grid)
+  double plan_scale = 1.0;      ///< world metres per plan metre the pairs were made with
+  double noise_m = 0.0;         ///< the pairs' own noise (pair_noise), rms, world metres
+  std::size_t pair_scans = 0;   ///< scans that made pairs
+  std::size_t scans = 0;        ///< scans in the log
+  PlanMatch match;              ///< the plan match under the pairs
+  bool match_accepted = false;  ///< it passed the plan-match check
+};
+
+/// The pairs of `maps` (grid points) farther than `radius` from every point of `points_in_grid`.
+ReferencePairs pairs_beyond(const ReferencePairs& maps, const Eigen::Matrix2Xd& points_in_grid,
+                            double radius);
+
+/// Judges the run's pairs (plan match, coverage of the gridmap's walls, scans), compares them
+/// with the maps' alignment when both pass (their distance through the bent map, their scales),
+/// and chooses: the run's pairs when they pass and agree with the maps (or the maps did not
+/// pass); when they disagree, the source whose pairs the plan-match check scores higher
+/// (`maps_match` computed by `judge_maps`); the maps' pairs when only the maps pass.
+PairSourceCheck check_pair_sources(const RunPairsSummary& run, const MapAlignment* maps,
+                                   const OccupancyGrid& gridmap, const PairSourceOptions& options,
+                                   const std::function<PlanMatch(const ReferencePairs&)>& judge);
+
+}  // namespace floorgrid
