@@ -783,18 +783,6 @@ void visit(OptionVisitor& v, DualCheckOptions& o) {
        .choices = {}});
   v.field("consistency_heading", o.consistency_heading,
           {.unit = "rad", .doc = "Likewise for the heading", .choices = {}});
-  v.field("maps_distance", o.maps_distance,
-          {.unit = "m",
-           .doc = "With the maps aligned first: a plan pose farther than this (world metres) from "
-                  "where their bent map puts the gridmap pose makes no pairs",
-           .choices = {}});
-  v.field("maps_misfit_factor", o.maps_misfit_factor,
-          {.unit = "",
-           .doc = "... the distance grown by this many times the bent map's local misfit",
-           .choices = {}});
-  v.field("maps_misfit_radius", o.maps_misfit_radius,
-          {.unit = "m", .doc = "... over the gridmap's walls this near", .choices = {}});
-  v.field("maps_heading", o.maps_heading, {.unit = "rad", .doc = "Its heading", .choices = {}});
   v.field("consistency_scans", o.consistency_scans,
           {.unit = "scans",
            .doc = "Consecutive disagreeing scans before the plan filter is re-initialized",

@@ -218,18 +218,6 @@ struct DualCheckOptions {
   /// one similarity for the whole plan), which also judges the pairs then.
   double consistency_distance = 3.0;
   double consistency_heading = 0.5;  ///< radians
-  /// With the maps' bent map as the global registration (the maps aligned first), a plan pose
-  /// farther than this (world metres and radians) from where the bent map puts the gridmap
-  /// pose makes no pairs, whatever the local registration says: along a corridor the scans
-  /// cannot place the plan filter, and a local registration follows it as it slides (fr079,
-  /// one seed in three: pairs 1.6 m off at the median over a third of the building). The
-  /// distance grows by maps_misfit_factor times the bent map's local misfit (MapWarp::
-  /// local_misfit within maps_misfit_radius): where the drawing differs from the building the
-  /// maps are unsure and the run may mend them.
-  double maps_distance = 1.0;
-  double maps_misfit_factor = 3.0;
-  double maps_misfit_radius = 3.0;  ///< world metres
-  double maps_heading = 0.3;  ///< radians
   /// Consecutive disagreeing scans (the gridmap filter converged; the plan filter converged or
   /// not) after which the plan filter is re-initialized around the registered gridmap pose.
   int consistency_scans = 10;

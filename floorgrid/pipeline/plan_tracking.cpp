@@ -23,21 +23,7 @@ std::optional<PlanRestart> DualCheck::judge(std::size_t scan, ScanRecord& record
   // laser, whatever units or scale the plan is drawn in.
   const double off = (plan_pose.translation() - expected.translation()).norm() * scale_;
   const double turned = std::abs(normalize_angle(plan_pose.theta - expected.theta));
-  // The maps' bent map bounds how far the run may go its own way (a local registration follows
-  // a plan filter sliding along a corridor): beyond it, the scan makes no pairs.
-  bool off_maps = false;
-  if (const MapWarp* warp = global_.warp()) {
-    const Pose2 by_maps = global_.plan_pose(grid_pose);
-    const double bound =
-        options_.maps_distance +
-        options_.maps_misfit_factor *
-            warp->local_misfit(grid_pose.translation(), options_.maps_misfit_radius);
-    off_maps = (plan_pose.translation() - by_maps.translation()).norm() * scale_ > bound ||
-               std::abs(normalize_angle(plan_pose.theta - by_maps.theta)) > options_.maps_heading;
-  }
-  if (off_maps) {
-    record.consistent = false;
-  } else if (near) {
+  if (near) {
     const double tolerance =
         options_.local_distance + options_.local_distance_growth * local_.distance_to(grid_pose);
     record.consistent = off <= tolerance && turned <= options_.local_heading;
