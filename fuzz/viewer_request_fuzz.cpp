@@ -1,8 +1,10 @@
 // The viewer API's request bodies (server/map_request), as a client on the network may send
-// them: POST /api/map (mapped both ways by a small model), /api/pairs, /api/robot_pose and
-// /api/fit. A RequestError (a 4xx) is the expected answer to a bad one.
+// them: POST /api/map (read as the server reads it, as it streams, and mapped both ways by a
+// small model), /api/pairs, /api/robot_pose and /api/fit. A RequestError (a 4xx) is the expected
+// answer to a bad one.
 #include "floorgrid/mapping/mapping_factory.hpp"
 #include "floorgrid/server/map_request.hpp"
+#include "floorgrid/server/map_request_parser.hpp"
 #include "fuzz/fuzz_support.hpp"
 
 namespace {
@@ -38,6 +40,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string body(reinterpret_cast<const char*>(data), size);
   RequestLimits limits;
   limits.max_points = 1000;
+  answer([&] { parse_map_request(body, limits, small_model().name()); });
   answer([&] { map_points(parse_request(body), small_model(), limits); });
   answer([&] { parse_pair(parse_request(body)); });
   answer([&] { parse_robot_pose(parse_request(body)); });

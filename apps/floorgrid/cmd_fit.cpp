@@ -4,6 +4,8 @@
 #include <spdlog/spdlog.h>
 
 #include <charconv>
+#include <cmath>
+#include <vector>
 
 #include "apps/floorgrid/cli_util.hpp"
 #include "apps/floorgrid/commands.hpp"
@@ -17,6 +19,7 @@
 #include "floorgrid/mapping/fit_with_uncertainty.hpp"
 #include "floorgrid/mapping/mapping_factory.hpp"
 #include "floorgrid/mapping/model_selection.hpp"
+#include "floorgrid/mapping/pair_extent.hpp"
 
 namespace floorgrid::app {
 
@@ -34,6 +37,25 @@ void check_fit_memory(const MappingOptions& options, std::size_t pairs, double l
                     needed_gb, limit_gb),
         {}, 0, "--budget");
   }
+}
+
+/// Refuses a pair far outside the box of the others (a typo, a unit slip), naming its line: one
+/// such pair made every extent-based choice of a fit about it ("cv error inf", then a model
+/// `map` refuses). Dropping it quietly would fit what the user did not mean either.
+void refuse_far_pairs(const ReferencePairs& pairs, const std::vector<long>& lines,
+                      const std::string& file) {
+  const std::vector<FarPair> far = far_pairs(pairs);
+  if (far.empty())
+    return;
+  const FarPair& f = far.front();
+  const std::string others =
+      far.size() > 1 ? fmt::format(" ({} such pairs; the first named)", far.size()) : "";
+  throw InputError(
+      fmt::format("this pair's {} point lies {:.4g} m outside the box of the pairs' {} points "
+                  "({:.4g} m across, their 1st to 99th percentiles): farther than {:g} times "
+                  "that, a typo or a unit slip?{}; correct or delete it",
+                  f.side, f.distance, f.side, f.extent, FarPairOptions{}.factor, others),
+      file, lines[static_cast<std::size_t>(f.index)], f.side + (f.axis == 0 ? "_x" : "_y"));
 }
 
 /// Runs `work`; an InputError about the pairs that names no file gets the pairs file's name.
@@ -141,7 +163,9 @@ void add_fit_command(CLI::App& root) {
     }
     args->options.common.reduction.budget = static_cast<std::size_t>(args->budget);
     refuse_overwriting_input(args->pairs, args->out, "--out");
-    ReferencePairs pairs = io::read_pairs_csv(args->pairs, args->unit);
+    std::vector<long> lines;
+    ReferencePairs pairs = io::read_pairs_csv(args->pairs, args->unit, &lines);
+    refuse_far_pairs(pairs, lines, args->pairs);
     check_fit_memory(args->options, static_cast<std::size_t>(pairs.size()), args->memory_limit_gb);
     const std::filesystem::path folder = std::filesystem::path(args->out).parent_path();
     const io::OutputFolder out_folder(folder.empty() ? std::filesystem::path(".") : folder);
@@ -153,6 +177,15 @@ void add_fit_command(CLI::App& root) {
         args->pairs, [&] { return fit_with_uncertainty(*model, args->options, pairs, folds); });
     for (const auto& w : s.warnings)
       spdlog::warn("{}", w);
+    // Numerical trouble is reported, not written: `map` refuses such a model.
+    const FitSummary& fitted = model->summary();
+    if (!std::isfinite(fitted.rms_m) || (fitted.cv_error_m && !std::isfinite(*fitted.cv_error_m))) {
+      throw InputError(
+          fmt::format("the fit's rms ({}) or cross-validated error ({}) is not finite: these "
+                      "pairs do not support model {}; no model written",
+                      fitted.rms_m, fitted.cv_error_m ? *fitted.cv_error_m : 0.0, fitted.model),
+          args->pairs, 0, "pairs");
+    }
     io::write_model(*model, args->out);
     const FitSummary& f = model->summary();
     fmt::print("model     {}\n", f.model);

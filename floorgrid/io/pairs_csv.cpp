@@ -21,7 +21,8 @@ constexpr std::array<std::string_view, 5> kColumns = {"plan_x", "plan_y", "grid_
 
 }  // namespace
 
-ReferencePairs read_pairs_csv(const std::filesystem::path& path, double unit) {
+ReferencePairs read_pairs_csv(const std::filesystem::path& path, double unit,
+                              std::vector<long>* pair_lines) {
   const std::string file = path.string();
   if (!(unit > 0.0) || !std::isfinite(unit)) {
     throw InputError(fmt::format("must be a positive number of metres per unit (got {:g})", unit),
@@ -51,6 +52,8 @@ ReferencePairs read_pairs_csv(const std::filesystem::path& path, double unit) {
       throw InputError(fmt::format("expected {} values, got {}", columns, fields.size()), file,
                        lines.line());
     }
+    if (pair_lines != nullptr)
+      pair_lines->push_back(lines.line());
     for (std::size_t c = 0; c < columns; ++c) {
       const std::string column(kColumns[c]);
       if (c < 4) {

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <filesystem>
+#include <vector>
 
 #include "floorgrid/geometry/reference_pairs.hpp"
 
@@ -10,7 +11,9 @@ namespace floorgrid::io {
 /// Coordinates are multiplied by `unit` (metres per file unit; 1 for metres). Blank lines and
 /// lines starting with '#' are skipped. Throws InputError naming the file, line and column for
 /// a bad header, a short or long row, a bad or non-finite number, a negative weight or no pairs.
-ReferencePairs read_pairs_csv(const std::filesystem::path& path, double unit = 1.0);
+/// `pair_lines`, when given, receives each pair's 1-based line in the file.
+ReferencePairs read_pairs_csv(const std::filesystem::path& path, double unit = 1.0,
+                              std::vector<long>* pair_lines = nullptr);
 
 /// Writes pairs as CSV (atomically), coordinates divided by `unit`, with the weight column when
 /// the pairs carry weights. Numbers are written with round-trip precision.

@@ -4,9 +4,12 @@
 #include <cmath>
 #include <cstdint>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "floorgrid/core/error.hpp"
 #include "floorgrid/core/statistics.hpp"
+#include "floorgrid/mapping/pair_extent.hpp"
 
 namespace floorgrid {
 
@@ -106,29 +109,27 @@ ReferencePairs merge_duplicates(const ReferencePairs& pairs, DuplicateMerge* rep
 
 namespace {
 
-/// The square cells of side `cell` over the plan points, from `origin`.
-struct Binning {
-  long width = 0;                 ///< cells along x
-  std::vector<std::int64_t> key;  ///< per pair: row * width + column
-};
+/// A square cell's column and row.
+using CellKey = std::pair<std::int64_t, std::int64_t>;
 
-Binning bin(const ReferencePairs& pairs, const Eigen::Vector2d& origin, double cell) {
-  Binning b;
-  const Eigen::Vector2d hi = pairs.points_in_plan.rowwise().maxCoeff();
-  b.width = static_cast<long>(std::floor((hi.x() - origin.x()) / cell)) + 1;
-  b.key.resize(static_cast<std::size_t>(pairs.size()));
+/// The cell index of `offset` metres from the origin, clamped far inside the int64 range: a
+/// far pair with tiny cells must not overflow (it lands in a cell of its own either way).
+std::int64_t cell_index(double offset, double cell) {
+  return static_cast<std::int64_t>(std::clamp(std::floor(offset / cell), -4e18, 4e18));
+}
+
+/// Per pair, its square cell of side `cell` over the plan points, from `origin`.
+std::vector<CellKey> bin(const ReferencePairs& pairs, const Eigen::Vector2d& origin, double cell) {
+  std::vector<CellKey> keys(static_cast<std::size_t>(pairs.size()));
   for (Eigen::Index i = 0; i < pairs.size(); ++i) {
-    const auto cx =
-        static_cast<std::int64_t>(std::floor((pairs.points_in_plan(0, i) - origin.x()) / cell));
-    const auto cy =
-        static_cast<std::int64_t>(std::floor((pairs.points_in_plan(1, i) - origin.y()) / cell));
-    b.key[static_cast<std::size_t>(i)] = cy * b.width + cx;
+    keys[static_cast<std::size_t>(i)] = {cell_index(pairs.points_in_plan(1, i) - origin.y(), cell),
+                                         cell_index(pairs.points_in_plan(0, i) - origin.x(), cell)};
   }
-  return b;
+  return keys;
 }
 
 /// How many distinct cells hold pairs.
-std::size_t count_cells(std::vector<std::int64_t> keys) {
+std::size_t count_cells(std::vector<CellKey> keys) {
   std::sort(keys.begin(), keys.end());
   return static_cast<std::size_t>(std::unique(keys.begin(), keys.end()) - keys.begin());
 }
@@ -150,12 +151,18 @@ ReferencePairs reduce_pairs(const ReferencePairs& pairs, const ReductionOptions&
   const Eigen::Vector2d lo = pairs.points_in_plan.rowwise().minCoeff();
   const Eigen::Vector2d hi = pairs.points_in_plan.rowwise().maxCoeff();
   const double extent = std::max((hi - lo).maxCoeff(), 1e-9);
-  // Bisect on the cell size (in log space) for the smallest cells within the budget.
-  double small = extent / std::sqrt(static_cast<double>(s.pairs_before)) / 4.0,
+  // The smallest cells searched come from the bulk's extent when a few far pairs stretch the
+  // full one (one pair at 1e6 m beside a 100 m building made 1 km cells: two pairs left); as
+  // before otherwise, so that pairs without far ones are reduced exactly as they were.
+  const double bulk = std::max(robust_extent(pairs.points_in_plan), 1e-9);
+  const double searched = extent > 10.0 * bulk ? bulk : extent;
+  // Bisect on the cell size (in log space) for the smallest cells within the budget; one cell
+  // of the full extent holds every pair.
+  double small = searched / std::sqrt(static_cast<double>(s.pairs_before)) / 4.0,
          large = extent * 1.01;
   for (int iteration = 0; iteration < 40; ++iteration) {
     const double mid = std::sqrt(small * large);
-    if (count_cells(bin(pairs, lo, mid).key) > options.budget) {
+    if (count_cells(bin(pairs, lo, mid)) > options.budget) {
       small = mid;
     } else {
       large = mid;
@@ -164,17 +171,17 @@ ReferencePairs reduce_pairs(const ReferencePairs& pairs, const ReductionOptions&
       break;
   }
   // Group the pairs by cell: sort their indices by cell key.
-  const Binning binning = bin(pairs, lo, large);
+  const std::vector<CellKey> key = bin(pairs, lo, large);
   std::vector<Eigen::Index> order(static_cast<std::size_t>(pairs.size()));
   for (Eigen::Index i = 0; i < pairs.size(); ++i)
     order[static_cast<std::size_t>(i)] = i;
   std::stable_sort(order.begin(), order.end(), [&](Eigen::Index a, Eigen::Index b) {
-    return binning.key[static_cast<std::size_t>(a)] < binning.key[static_cast<std::size_t>(b)];
+    return key[static_cast<std::size_t>(a)] < key[static_cast<std::size_t>(b)];
   });
   std::vector<std::vector<Eigen::Index>> cells;
   for (std::size_t k = 0; k < order.size(); ++k) {
-    const auto key = binning.key[static_cast<std::size_t>(order[k])];
-    if (k == 0 || key != binning.key[static_cast<std::size_t>(order[k - 1])])
+    const CellKey& cell = key[static_cast<std::size_t>(order[k])];
+    if (k == 0 || cell != key[static_cast<std::size_t>(order[k - 1])])
       cells.emplace_back();
     cells.back().push_back(order[k]);
   }

@@ -41,7 +41,9 @@ struct ReductionSummary {
 /// size that leaves at most `budget` non-empty cells; each cell's pairs become one pair, the
 /// weighted mean of those whose displacement (grid - plan) is within 3 median absolute
 /// deviations of the cell's median displacement (so a stray pair does not drag a cell), with
-/// their summed weight. Pairs within the budget are returned unchanged. Deterministic.
+/// their summed weight. Pairs within the budget are returned unchanged. Deterministic. A few
+/// pairs far from the rest (see far_pairs) each keep a cell of their own and leave the cells of
+/// the others as small as without them.
 ReferencePairs reduce_pairs(const ReferencePairs& pairs, const ReductionOptions& options,
                             ReductionSummary* summary = nullptr);
 

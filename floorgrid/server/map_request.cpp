@@ -1,11 +1,13 @@
 #include "floorgrid/server/map_request.hpp"
 
-#include "floorgrid/mapping/mapping_factory.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <optional>
 #include <vector>
+
+#include "floorgrid/geometry/reference_pairs.hpp"
+#include "floorgrid/mapping/mapping_factory.hpp"
+#include "floorgrid/server/map_request_parser.hpp"
 
 namespace floorgrid::server {
 
@@ -31,38 +33,14 @@ double finite_number(const nlohmann::json& value, const std::string& where) {
   return x;
 }
 
-/// One input point: x, y and an optional heading.
-struct InputPoint {
-  Pose2 pose;
-  bool has_theta = false;
-};
-
-std::vector<InputPoint> input_points(const nlohmann::json& request, const RequestLimits& limits) {
-  const nlohmann::json& points = field(request, "points");
-  if (!points.is_array())
-    throw bad("'points' must be a list of [x, y] or [x, y, theta]");
-  if (points.size() > limits.max_points) {
-    throw RequestError(413, "'points' holds " + std::to_string(points.size()) +
-                                " points; at most " + std::to_string(limits.max_points) +
-                                " per request");
+/// A coordinate: a finite number within kMaxCoordinate metres of the origin.
+double coordinate(const nlohmann::json& value, const std::string& where) {
+  const double x = finite_number(value, where);
+  if (!(std::abs(x) <= kMaxCoordinate)) {
+    throw bad(where + " must be within 1e7 m of the origin (got " + value.dump() +
+              "): not a coordinate in a building");
   }
-  std::vector<InputPoint> out;
-  out.reserve(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    const nlohmann::json& p = points[i];
-    const std::string where = "'points[" + std::to_string(i) + "]'";
-    if (!p.is_array() || p.size() < 2 || p.size() > 3)
-      throw bad(where + " must be [x, y] or [x, y, theta]");
-    InputPoint q;
-    q.pose.x = finite_number(p[0], where + " x");
-    q.pose.y = finite_number(p[1], where + " y");
-    if (p.size() == 3) {
-      q.pose.theta = finite_number(p[2], where + " theta");
-      q.has_theta = true;
-    }
-    out.push_back(q);
-  }
-  return out;
+  return x;
 }
 
 nlohmann::json number_or_null(const std::optional<double>& x) {
@@ -106,23 +84,43 @@ nlohmann::json mapped_point_json(const PointMapping& model, const Pose2& pose, b
 
 nlohmann::json map_points(const nlohmann::json& request, const PointMapping& model,
                           const RequestLimits& limits) {
-  const nlohmann::json& from = field(request, "from");
-  if (!from.is_string() || (from != "plan" && from != "grid"))
-    throw bad("'from' must be \"plan\" or \"grid\" (got " + from.dump() + ")");
-  if (const auto it = request.find("model"); it != request.end()) {
-    if (!it->is_string() || it->get<std::string>() != model.name()) {
-      throw bad("'model': this session maps with '" + model.name() + "' (got " + it->dump() + ")");
-    }
-  }
-  const bool forward = from == "plan";
-  const std::vector<InputPoint> points = input_points(request, limits);
+  if (!request.is_object())
+    throw bad("the body must be a JSON object");
+  const MapRequest read = parse_map_request(request.dump(), limits, model.name());
   nlohmann::json mapped = nlohmann::json::array();
-  for (const InputPoint& q : points)
-    mapped.push_back(mapped_point_json(model, q.pose, q.has_theta, forward));
-  return {{"from", from},
-          {"to", forward ? "grid" : "plan"},
+  for (const RequestPoint& q : read.points)
+    mapped.push_back(mapped_point_json(model, q.pose, q.has_theta, read.forward));
+  return {{"from", read.forward ? "plan" : "grid"},
+          {"to", read.forward ? "grid" : "plan"},
           {"model", model.name()},
           {"points", std::move(mapped)}};
+}
+
+std::string mapped_points_head(const MapRequest& request, const PointMapping& model) {
+  const nlohmann::json from = request.forward ? "plan" : "grid";
+  const nlohmann::json to = request.forward ? "grid" : "plan";
+  return "{\"from\":" + from.dump() + ",\"to\":" + to.dump() +
+         ",\"model\":" + nlohmann::json(model.name()).dump() + ",\"points\":[";
+}
+
+void append_mapped_points(std::string& out, const MapRequest& request, const PointMapping& model,
+                          std::size_t begin, std::size_t end) {
+  for (std::size_t i = begin; i < end; ++i) {
+    if (i > 0)
+      out += ',';
+    const RequestPoint& q = request.points[i];
+    out += mapped_point_json(model, q.pose, q.has_theta, request.forward).dump();
+  }
+}
+
+std::string mapped_points_tail() {
+  return "]}";
+}
+
+std::string mapped_points_text(const MapRequest& request, const PointMapping& model) {
+  std::string out = mapped_points_head(request, model);
+  append_mapped_points(out, request, model, 0, request.points.size());
+  return out + mapped_points_tail();
 }
 
 PairRequest parse_pair(const nlohmann::json& request) {
@@ -131,9 +129,32 @@ PairRequest parse_pair(const nlohmann::json& request) {
     const std::string where = std::string("'") + name + "'";
     if (!p.is_array() || p.size() != 2)
       throw bad(where + " must be [x, y]");
-    return Eigen::Vector2d(finite_number(p[0], where + " x"), finite_number(p[1], where + " y"));
+    return Eigen::Vector2d(coordinate(p[0], where + " x"), coordinate(p[1], where + " y"));
   };
   return {point("plan"), point("grid")};
+}
+
+void check_pair_near_maps(const PairRequest& pair, const PairBounds& bounds,
+                          const RequestLimits& limits) {
+  const auto check = [&](const char* side, const Eigen::Vector2d& point,
+                         const std::optional<Eigen::AlignedBox2d>& box) {
+    if (!box || box->isEmpty())
+      return;
+    const double margin =
+        std::max(limits.pair_margin_m, limits.pair_margin_maps * box->diagonal().norm());
+    const double outside = box->exteriorDistance(point);
+    if (outside > margin) {
+      const auto text = [](double x) { return nlohmann::json(x).dump(); };
+      throw bad(std::string("'") + side + "' (" + text(point.x()) + ", " + text(point.y()) +
+                ") lies " + text(std::round(outside)) + " m outside the " + side + " map ([" +
+                text(box->min().x()) + ", " + text(box->min().y()) + "] to [" +
+                text(box->max().x()) + ", " + text(box->max().y()) +
+                "]): a pair's point must lie on its map or within " + text(std::round(margin)) +
+                " m of it");
+    }
+  };
+  check("plan", pair.point_in_plan, bounds.plan);
+  check("grid", pair.point_in_grid, bounds.grid);
 }
 
 std::string parse_fit_model(const nlohmann::json& request) {
@@ -151,8 +172,8 @@ std::string parse_fit_model(const nlohmann::json& request) {
 
 Pose2 parse_robot_pose(const nlohmann::json& request) {
   Pose2 pose;
-  pose.x = finite_number(field(request, "x"), "'x'");
-  pose.y = finite_number(field(request, "y"), "'y'");
+  pose.x = coordinate(field(request, "x"), "'x'");
+  pose.y = coordinate(field(request, "y"), "'y'");
   pose.theta = finite_number(field(request, "theta"), "'theta'");
   return pose;
 }

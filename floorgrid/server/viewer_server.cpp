@@ -1,25 +1,23 @@
 #include "floorgrid/server/viewer_server.hpp"
 
-#include <httplib.h>
-
 #include <algorithm>
+#include <functional>
+#include <optional>
 #include <stdexcept>
 #include <utility>
 
 #include "floorgrid/core/error.hpp"
+#include "floorgrid/server/map_request_parser.hpp"
+#include "floorgrid/server/printable_text.hpp"
+#include "floorgrid/server/request_slots.hpp"
+// Last: cpp-httplib's <httplib.h> brings <resolv.h>, whose `_res` macro breaks Eigen's headers
+// after it.
+#include "floorgrid/server/http_answers.hpp"  // NOLINT(llvm-include-order)
+#include "floorgrid/server/request_body.hpp"  // NOLINT(llvm-include-order)
 
 namespace floorgrid::server {
 
 namespace {
-
-void answer_json(httplib::Response& res, const nlohmann::json& body, int status = 200) {
-  res.status = status;
-  res.set_content(body.dump(), "application/json");
-}
-
-void answer_error(httplib::Response& res, int status, const std::string& message) {
-  answer_json(res, {{"error", message}}, status);
-}
 
 /// Where a map's picture lies: its pixels, metres per pixel, origin (x, y, yaw) and bounds.
 nlohmann::json map_info(const ViewerMap& map) {
@@ -57,27 +55,77 @@ VersionedLayers session_layers(ViewerSession& session) {
   return layers;
 }
 
-/// Runs a handler, answering a RequestError with its status and message.
+/// A handler run by answering_errors.
 template <typename Handler>
 httplib::Server::Handler guarded(Handler handler) {
   return [handler](const httplib::Request& req, httplib::Response& res) {
-    try {
-      handler(req, res);
-    } catch (const RequestError& e) {
-      answer_error(res, e.status(), e.what());
-    } catch (const InputError& e) {
-      answer_error(res, 400, e.what());  // the library's word on the request's data
-    }
+    answering_errors(res, [&] { handler(req, res); });
   };
+}
+
+/// A handler of a POST's body (at most `limit` bytes; see read_body) run by answering_errors.
+template <typename Handler>
+httplib::Server::HandlerWithContentReader with_body(std::size_t limit, Handler handler) {
+  return [limit, handler](const httplib::Request& req, httplib::Response& res,
+                          const httplib::ContentReader& reader) {
+    answering_errors(res, [&] { handler(req, res, read_body(req, res, reader, limit)); });
+  };
+}
+
+/// The routes a method has (a request elsewhere is refused before its body is read).
+bool is_route(const std::string& method, const std::string& path) {
+  if (method == "POST")
+    return path == "/api/map" || path == "/api/robot_pose" || path == "/api/pairs" ||
+           path == "/api/fit";
+  if (method == "DELETE")
+    return path.starts_with("/api/pairs/");
+  return method == "GET" || method == "HEAD" || method == "OPTIONS";
+}
+
+/// Whether `req` comes with a body.
+bool has_body(const httplib::Request& req) {
+  return req.has_header("Transfer-Encoding") ||
+         (req.has_header("Content-Length") && req.get_header_value("Content-Length") != "0");
+}
+
+/// Checks a request once its headers are read, before its body: a NUL or other control byte
+/// in the path (a file name cut short at it) gets 400, a method or path without a route 404 or
+/// 405 (cpp-httplib would read such a body whole first).
+httplib::Server::HandlerResponse check_request_head(const httplib::Request& req,
+                                                    httplib::Response& res) {
+  if (HttpConnection* connection = HttpConnection::current())
+    connection->begin_body();
+  const auto refuse = [&](int status, const std::string& message) {
+    if (has_body(req))
+      close_after(res);
+    answer_error(res, status, message);
+    return httplib::Server::HandlerResponse::Handled;
+  };
+  if (has_control_byte(req.path)) {
+    return refuse(400, "the path holds a NUL or another control byte: " + printable_text(req.path));
+  }
+  if (!is_route(req.method, req.path)) {
+    if (req.method == "POST" || req.method == "DELETE")
+      return refuse(404, "no such path: " + printable_text(req.path));
+    return refuse(405, "the method " + printable_text(req.method) + " is not served");
+  }
+  if (req.method == "DELETE" && has_body(req))
+    return refuse(400, "a DELETE takes no body");
+  return httplib::Server::HandlerResponse::Unhandled;
 }
 
 }  // namespace
 
 struct ViewerServer::Impl {
-  Impl(ViewerSession& s, ServerOptions o) : session(s), options(std::move(o)) {}
+  Impl(ViewerSession& s, ServerOptions o)
+      : session(s),
+        options(std::move(o)),
+        large(options.large_requests),
+        http(options.connection) {}
   ViewerSession& session;
   ServerOptions options;
-  httplib::Server http;
+  RequestSlots large;  ///< POST /api/map requests over options.large_request_bytes
+  LimitedHttpServer http;
 };
 
 ViewerServer::ViewerServer(ViewerSession& session, ServerOptions options)
@@ -86,35 +134,36 @@ ViewerServer::ViewerServer(ViewerSession& session, ServerOptions options)
   s.http.set_payload_max_length(s.options.max_body_bytes);
   const auto threads = static_cast<std::size_t>(std::max(1, s.options.threads));
   s.http.new_task_queue = [threads] { return new httplib::ThreadPool(threads); };
-  s.http.set_keep_alive_timeout(2);
   s.http.set_tcp_nodelay(true);  // an answer written in parts must not wait for an ACK
-  s.http.set_read_timeout(10, 0);
-  s.http.set_write_timeout(10, 0);
+  // Timeouts: s.options.connection, kept by LimitedHttpServer's connections.
   s.http.set_exception_handler(
       [](const httplib::Request&, httplib::Response& res, std::exception_ptr error) {
         std::string message = "internal error";
         try {
           std::rethrow_exception(std::move(error));
         } catch (const std::exception& e) {
-          message += std::string(": ") + e.what();
+          message += ": " + printable_text(e.what(), 400);
         } catch (...) {
         }
         answer_error(res, 500, message);
       });
+  s.http.set_pre_routing_handler(check_request_head);
   s.http.set_error_handler([](const httplib::Request& req, httplib::Response& res) {
-    if (!res.body.empty())
+    if (!res.body.empty() || res.content_length_ > 0)
       return;  // a handler's own answer
-    // cpp-httplib parses a form-encoded body itself and refuses one over 8 KiB (compiled in):
-    // the JSON API's usual mistake (curl -d without a Content-Type), said so.
-    const bool form =
-        req.get_header_value("Content-Type").starts_with("application/x-www-form-urlencoded");
-    const std::string message = res.status == 413 && form
-                                    ? "a body sent as application/x-www-form-urlencoded is "
-                                      "limited to 8 KiB: send JSON with Content-Type: "
-                                      "application/json (curl -H 'Content-Type: "
-                                      "application/json' -d @points.json)"
-                                : res.status == 413 ? "the request body is too large"
-                                : res.status == 404 ? "no such path: " + req.path
+    if (const HttpConnection* connection = HttpConnection::current()) {
+      if (connection->timed_out()) {
+        res.status = 408;
+        return answer_error(res, 408, "the request's line and headers did not come in time");
+      }
+      if (connection->headers_too_large()) {
+        res.status = 431;
+        return answer_error(res, 431, "the request's line and headers are too large");
+      }
+    }
+    const std::string message = res.status == 413   ? "the request body is too large"
+                                : res.status == 414 ? "the request's path is too long"
+                                : res.status == 404 ? "no such path: " + printable_text(req.path)
                                                     : "bad request";
     answer_error(res, res.status, message);
   });
@@ -142,15 +191,32 @@ ViewerServer::ViewerServer(ViewerSession& session, ServerOptions options)
                                                                          httplib::Response& res) {
       if (map.png.empty())
         return answer_error(res, 404, std::string("this session has no ") + which + " map");
-      res.set_content(map.png, "image/png");
+      answer_bytes(res, map.png, "image/png");
     });
   }
-  s.http.Post("/api/map",
-              guarded([&session, limits](const httplib::Request& req, httplib::Response& res) {
-                const nlohmann::json request = parse_request(req.body);
-                const std::shared_ptr<const PointMapping> model = session.model();
-                answer_json(res, map_points(request, *model, limits));
-              }));
+  s.http.Post("/api/map", [&s](const httplib::Request& req, httplib::Response& res,
+                               const httplib::ContentReader& reader) {
+    answering_errors(res, [&] {
+      // A large body takes a slot first: the slots bound the memory of the bodies and points
+      // held at once (a body of unknown length counts as large).
+      std::optional<RequestSlots::Slot> slot;
+      const std::optional<std::size_t> length = body_length(req);
+      if (!length || *length > s.options.large_request_bytes) {
+        slot = s.large.try_take();
+        if (!slot) {
+          drop_body(req, res, reader, s.options.max_body_bytes);
+          throw RequestError(503, "busy: " + std::to_string(s.large.slots()) +
+                                      " large requests are being answered; try again in a "
+                                      "moment (Retry-After)");
+        }
+      }
+      std::shared_ptr<const PointMapping> model = s.session.model();
+      MapRequest request = parse_map_request(read_body(req, res, reader, s.options.max_body_bytes),
+                                             s.options.limits, model->name());
+      answer_mapped_points(res, std::move(model), std::move(request), std::move(slot),
+                           s.options.streamed_points);
+    });
+  });
   s.http.Get("/api/robot_pose",
              guarded([&session](const httplib::Request&, httplib::Response& res) {
                const RobotPose r = session.robot_pose();
@@ -163,9 +229,11 @@ ViewerServer::ViewerServer(ViewerSession& session, ServerOptions options)
                }
                answer_json(res, body);
              }));
+  const std::size_t small_body = s.options.max_small_body_bytes;
   s.http.Post("/api/robot_pose",
-              guarded([&session](const httplib::Request& req, httplib::Response& res) {
-                const Pose2 pose = parse_robot_pose(parse_request(req.body));
+              with_body(small_body, [&session](const httplib::Request&, httplib::Response& res,
+                                               const std::string& body) {
+                const Pose2 pose = parse_robot_pose(parse_request(body));
                 answer_json(res, {{"sequence", session.post_robot_pose(pose)}});
               }));
   s.http.Get("/api/pairs", guarded([&session](const httplib::Request& req, httplib::Response& res) {
@@ -178,16 +246,20 @@ ViewerServer::ViewerServer(ViewerSession& session, ServerOptions options)
                nlohmann::json body{{"pairs", pairs}, {"base_pairs", session.base_pairs().size()}};
                if (req.has_param("base")) {
                  const std::string base = req.get_param_value("base");
-                 if (base != "0" && base != "1")
-                   throw RequestError(400, "'base' must be 0 or 1 (got \"" + base + "\")");
+                 if (base != "0" && base != "1") {
+                   throw RequestError(
+                       400, "'base' must be 0 or 1 (got \"" + printable_text(base) + "\")");
+                 }
                  if (base == "1")
                    body["base"] = base_pairs_json(session.base_pairs());
                }
                answer_json(res, body);
              }));
-  s.http.Post("/api/pairs",
-              guarded([&session](const httplib::Request& req, httplib::Response& res) {
-                const PairRequest p = parse_pair(parse_request(req.body));
+  s.http.Post("/api/pairs", with_body(small_body, [&session, limits](const httplib::Request&,
+                                                                     httplib::Response& res,
+                                                                     const std::string& body) {
+                const PairRequest p = parse_pair(parse_request(body));
+                check_pair_near_maps(p, session.pair_bounds(), limits);
                 answer_json(res, {{"id", session.add_pair(p.point_in_plan, p.point_in_grid)}}, 201);
               }));
   s.http.Delete(R"(/api/pairs/(\d{1,18}))",
@@ -197,25 +269,27 @@ ViewerServer::ViewerServer(ViewerSession& session, ServerOptions options)
                     throw RequestError(404, "no manual pair " + std::to_string(id));
                   answer_json(res, {{"deleted", id}});
                 }));
-  s.http.Post("/api/fit", guarded([&session](const httplib::Request& req, httplib::Response& res) {
-                MappingOptions fit;
-                fit.model = parse_fit_model(parse_request(req.body));
-                const RefitSummary r = session.refit(fit);
-                answer_json(res, {{"model", r.model},
-                                  {"pairs", r.pairs},
-                                  {"rms_m", r.rms_m},
-                                  {"cv_error_m", r.cv_error_m ? nlohmann::json(*r.cv_error_m)
-                                                              : nlohmann::json(nullptr)},
-                                  {"has_std_m", r.has_std},
-                                  {"seconds", r.seconds}});
-              }));
+  s.http.Post(
+      "/api/fit", with_body(small_body, [&session](const httplib::Request&, httplib::Response& res,
+                                                   const std::string& body) {
+        MappingOptions fit;
+        fit.model = parse_fit_model(parse_request(body));
+        const RefitSummary r = session.refit(fit);
+        answer_json(res, {{"model", r.model},
+                          {"pairs", r.pairs},
+                          {"rms_m", r.rms_m},
+                          {"cv_error_m",
+                           r.cv_error_m ? nlohmann::json(*r.cv_error_m) : nlohmann::json(nullptr)},
+                          {"has_std_m", r.has_std},
+                          {"seconds", r.seconds}});
+      }));
   s.http.Get("/api/overlay.png",
              guarded([&session](const httplib::Request&, httplib::Response& res) {
                const VersionedLayers layers = session_layers(session);
                if (layers.layers->overlay_png.empty())
                  throw RequestError(404, "this session has no overlay");
                res.set_header("Cache-Control", "no-cache");
-               res.set_content(layers.layers->overlay_png, "image/png");
+               answer_bytes(res, layers.layers->overlay_png, "image/png", layers.layers);
              }));
   s.http.Get("/api/heatmap", guarded([&session](const httplib::Request&, httplib::Response& res) {
                const VersionedLayers layers = session_layers(session);
@@ -241,12 +315,12 @@ ViewerServer::ViewerServer(ViewerSession& session, ServerOptions options)
                for (const HeatLayer& h : layers.layers->heat) {
                  if (h.kind == kind) {
                    res.set_header("Cache-Control", "no-cache");
-                   return res.set_content(h.png, "image/png");
+                   return answer_bytes(res, h.png, "image/png", layers.layers);
                  }
                  known += (known.empty() ? "" : ", ") + h.kind;
                }
-               throw RequestError(
-                   404, "no heat map of kind '" + kind + "' (this session has " + known + ")");
+               throw RequestError(404, "no heat map of kind '" + printable_text(kind) +
+                                           "' (this session has " + known + ")");
              }));
   for (const StaticMount& mount : s.options.static_files) {
     if (!s.http.set_mount_point(mount.prefix, mount.folder.string()))

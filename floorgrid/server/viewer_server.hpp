@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "floorgrid/server/connection_limits.hpp"
 #include "floorgrid/server/map_request.hpp"
 #include "floorgrid/server/viewer_session.hpp"
 
@@ -17,21 +18,32 @@ struct StaticMount {
   std::filesystem::path folder;  ///< must exist
 };
 
-/// Where and how the viewer's server listens.
+/// Where and how the viewer's server listens, and what it takes on at once.
 struct ServerOptions {
   std::string host = "127.0.0.1";         ///< loopback unless told otherwise
   int port = 8080;                        ///< 0: any free port (bind() says which)
   std::vector<StaticMount> static_files;  ///< the page's files (none: the API alone)
-  std::size_t max_body_bytes = 8u << 20;  ///< larger request bodies get 413
+  std::size_t max_body_bytes = 8u << 20;  ///< a POST /api/map body larger gets 413
+  /// A body of the other routes (a pair, a pose, a model's name) larger gets 413.
+  std::size_t max_small_body_bytes = 64u << 10;
   /// Threads answering requests. A kept-alive connection holds one while it lasts: a browser
-  /// keeps up to 6, so a pool of 8 (cpp-httplib's default) starves a second page or client.
-  int threads = 32;
-  RequestLimits limits;  ///< what one request may ask for
+  /// keeps up to 6, so a pool of 8 (cpp-httplib's default) starves a second page or client;
+  /// a client that sends its headers slowly holds one until connection.header_timeout_s.
+  int threads = 64;
+  /// POST /api/map requests with a body over large_request_bytes (or of unknown length)
+  /// answered at once; another gets 503 with Retry-After. Each holds at most max_body_bytes
+  /// and 32 bytes a point while it is answered.
+  std::size_t large_requests = 4;
+  std::size_t large_request_bytes = 64u << 10;  ///< see large_requests
+  /// Answers of more points than this are sent while they are made (chunked), not held whole.
+  std::size_t streamed_points = 2000;
+  ConnectionLimits connection;  ///< how long and how much a connection may take
+  RequestLimits limits;         ///< what one request may ask for
 };
 
 /// The viewer's HTTP server (cpp-httplib): the JSON API over a ViewerSession and the static
 /// files of the web root (nothing outside it). Every bad request gets a 4xx status and
-/// {"error": message naming the field}.
+/// {"error": message naming the field}; bytes of the request it repeats are written %XX.
 ///   GET  /api/info         {"dataset", "model", "model_version", "models", "plan", "grid"
 ///                          (pixels, resolution, origin, bounds), "layers", "replay",
 ///                          "robot_pose_sequence"}

@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "floorgrid/core/error.hpp"
 #include "floorgrid/io/image_io.hpp"
 #include "floorgrid/io/map_io.hpp"
 #include "floorgrid/mapping/fit_with_uncertainty.hpp"
@@ -79,6 +80,15 @@ std::uint64_t ViewerSession::add_pair(const Eigen::Vector2d& point_in_plan,
   return next_pair_id_++;
 }
 
+PairBounds ViewerSession::pair_bounds() const {
+  PairBounds bounds;
+  if (!plan_.png.empty())
+    bounds.plan = plan_.geometry.bounds();
+  if (!grid_.png.empty())
+    bounds.grid = grid_.geometry.bounds();
+  return bounds;
+}
+
 bool ViewerSession::delete_pair(std::uint64_t id) {
   const std::lock_guard lock(mutex_);
   const auto it = std::find_if(manual_.begin(), manual_.end(),
@@ -92,6 +102,17 @@ bool ViewerSession::delete_pair(std::uint64_t id) {
 RefitSummary ViewerSession::refit(const MappingOptions& options) {
   const std::lock_guard refitting(refit_mutex_);
   const std::vector<ManualPair> manual = manual_pairs();
+  // Named by the id the operator sees, not by the index the fit would name.
+  for (const ManualPair& p : manual) {
+    const Eigen::Vector4d both(p.point_in_plan.x(), p.point_in_plan.y(), p.point_in_grid.x(),
+                               p.point_in_grid.y());
+    if (!(both.allFinite() && both.cwiseAbs().maxCoeff() <= kMaxCoordinate)) {
+      throw InputError("manual pair " + std::to_string(p.id) +
+                           " has a coordinate that is not finite or lies farther than 1e7 m "
+                           "from the origin: delete it",
+                       {}, 0, "pairs");
+    }
+  }
   ReferencePairs pairs;
   const Eigen::Index base = base_pairs_.size();
   const auto n = base + static_cast<Eigen::Index>(manual.size());

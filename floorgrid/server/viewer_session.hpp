@@ -12,6 +12,7 @@
 #include "floorgrid/mapping/mapping_factory.hpp"
 #include "floorgrid/mapping/point_mapping.hpp"
 #include "floorgrid/maps/occupancy_grid.hpp"
+#include "floorgrid/server/map_request.hpp"
 #include "floorgrid/server/viewer_layers.hpp"
 
 namespace floorgrid::server {
@@ -106,12 +107,16 @@ class ViewerSession {
   /// Adds a manual pair; returns its number.
   std::uint64_t add_pair(const Eigen::Vector2d& point_in_plan,
                          const Eigen::Vector2d& point_in_grid);
+  /// Where manual pairs may lie (check_pair_near_maps): the plan's and the gridmap's bounds,
+  /// none for a map the session lacks.
+  PairBounds pair_bounds() const;
   /// Deletes manual pair `id`; false when there is none.
   bool delete_pair(std::uint64_t id);
   /// Fits `options.model` to the alignment's and the manual pairs, with its cross-validated
   /// error and std_m (options.auto_select.cv's folds), and swaps it in when the fit succeeds (one
   /// refit at a time; requests meanwhile map with the model before). InputError from the fit (too
-  /// few pairs, an unknown model) leaves the model as it was.
+  /// few pairs, an unknown model, a manual pair beyond kMaxCoordinate, named by its id) leaves the
+  /// model as it was.
   RefitSummary refit(const MappingOptions& options);
 
   /// What the session came from (the dataset's name).

@@ -224,5 +224,34 @@ TEST(FitAndMapCommands, BadOptionsAndNonPhysicalInputAreRefused) {
                  {"also the input"});
 }
 
+TEST(FitAndMapCommands, APairFarFromTheOthersIsRefusedNamingItsLine) {
+  // Issue 31, defect 3: one pair at (1e6, 1e6) among the others made `fit` exit 0 with "cv
+  // error inf" and write a model that `map` refused.
+  TempDir dir;
+  write_pairs(dir / "pairs.csv", 1.0);
+  std::string csv = read_file(dir / "pairs.csv");
+  // Line 1 is the header, lines 2-61 the pairs: the far one on line 62, a comment before it.
+  const Eigen::Vector2d far_grid = truth(Eigen::Vector2d(1e6, 1e6));
+  csv += "# added by hand\n1000000,1000000," + std::to_string(far_grid.x()) + "," +
+         std::to_string(far_grid.y()) + "\n";
+  write_file(dir / "far.csv", csv);
+  for (const char* model : {"tps", "gt", "lc"}) {
+    const auto run = run_floorgrid("fit --pairs " + quoted(dir / "far.csv") + " --model " + model +
+                                   " --cv 5 --out " + quoted(dir / "far.json"));
+    EXPECT_EQ(run.status, 2) << model << "\n" << run.out << run.err;
+    for (const std::string part : {"far.csv:63", "'plan_", "farther than"})
+      EXPECT_NE(run.err.find(part), std::string::npos) << model << ": " << run.err;
+    EXPECT_EQ(run.out.find("cv error  inf"), std::string::npos) << run.out;
+    EXPECT_FALSE(fs::exists(dir / "far.json")) << model;
+  }
+  // A typo on the grid side is named too.
+  csv = read_file(dir / "pairs.csv") + "5,5,-40000,3\n";
+  write_file(dir / "far_grid.csv", csv);
+  expect_refused("fit --model gt --pairs " + quoted(dir / "far_grid.csv") + " --out " +
+                     quoted(dir / "far.json"),
+                 {"far_grid.csv:62", "grid_x"});
+  EXPECT_FALSE(fs::exists(dir / "far.json"));
+}
+
 }  // namespace
 }  // namespace floorgrid

@@ -6,6 +6,7 @@
 #include "floorgrid/core/random.hpp"
 #include "floorgrid/geometry/convex_hull.hpp"
 #include "floorgrid/geometry/point_index.hpp"
+#include "floorgrid/mapping/pair_extent.hpp"
 
 namespace floorgrid {
 namespace {
@@ -61,6 +62,55 @@ TEST(PairPreparation, AStrayPairDoesNotDragItsCell) {
         0.0, 1e-12);
   }
   EXPECT_DOUBLE_EQ(reduced.weights.sum(), 20.0);  // the stray pair was left out
+}
+
+TEST(PairPreparation, OneFarPairDoesNotCollapseTheRest) {
+  // Issue 31, defect 3: a pair at (1e6, 1e6) beside 100,000 pairs over 100 x 50 m made cells
+  // from the full extent, so every other pair fell into one or two cells.
+  ReferencePairs pairs = shifted_pairs(100000, 4, {2.0, -1.0});
+  pairs.points_in_plan.col(77) << 1e6, 1e6;
+  pairs.points_in_grid.col(77) << 1e6 + 2.0, 1e6 - 1.0;
+  ReductionSummary s;
+  const ReferencePairs reduced = reduce_pairs(pairs, {1500}, &s);
+  EXPECT_LE(reduced.size(), 1500);
+  EXPECT_GT(reduced.size(), 1000) << "cells of " << s.cell_size << " m";
+  EXPECT_LT(s.cell_size, 10.0);
+  // The far pair stays a pair of its own; the others still carry the shift.
+  EXPECT_LT(
+      ((reduced.points_in_grid - reduced.points_in_plan).colwise() - Eigen::Vector2d(2.0, -1.0))
+          .cwiseAbs()
+          .maxCoeff(),
+      1e-9);
+  EXPECT_NEAR(reduced.weights.sum(), 100000.0, 1e-6);
+  // A far pair on the other side (below the others' origin), and the extremes of the
+  // coordinate range on both: still within the budget, no cell key overflowing.
+  pairs.points_in_plan.col(78) << -1e7, -1e7;
+  pairs.points_in_grid.col(78) << -1e7 + 2.0, -1e7 - 1.0;
+  pairs.points_in_plan.col(79) << 1e7, -1e7;
+  pairs.points_in_grid.col(79) << 1e7 + 2.0, -1e7 - 1.0;
+  const ReferencePairs both = reduce_pairs(pairs, {1500}, &s);
+  EXPECT_LE(both.size(), 1500);
+  EXPECT_GT(both.size(), 1000) << "cells of " << s.cell_size << " m";
+  EXPECT_NEAR(both.weights.sum(), 100000.0, 1e-6);
+}
+
+TEST(PairPreparation, FarPairsAreFoundByThePairsOwnExtent) {
+  ReferencePairs pairs = shifted_pairs(1000, 5, {2.0, -1.0});
+  EXPECT_TRUE(far_pairs(pairs).empty());
+  pairs.points_in_plan.col(10) << 1e6, 1e6;     // a typo on the plan side
+  pairs.points_in_grid.col(20) << -5e4, 3.0;    // and one on the grid side
+  pairs.points_in_plan.col(30) << 150.0, 60.0;  // near: not far
+  const std::vector<FarPair> far = far_pairs(pairs);
+  ASSERT_EQ(far.size(), 2u);
+  EXPECT_EQ(far[0].index, 10);
+  EXPECT_EQ(far[0].side, "plan");
+  EXPECT_GT(far[0].distance, 1e5);
+  EXPECT_EQ(far[1].index, 20);
+  EXPECT_EQ(far[1].side, "grid");
+  EXPECT_EQ(far[1].axis, 0);
+  EXPECT_NEAR(far[0].extent, 100.0, 5.0);  // the 1st to 99th percentiles' box: about 100 x 50
+  // Too few pairs to judge: none is far.
+  EXPECT_TRUE(far_pairs(select_pairs(pairs, std::vector<Eigen::Index>{9, 10, 11, 12})).empty());
 }
 
 TEST(PairPreparation, DuplicatesMergeAndConflictsAreCounted) {

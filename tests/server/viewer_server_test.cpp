@@ -183,8 +183,8 @@ TEST_F(ViewerServerTest, TooManyPointsOrTooLargeABodyGet413) {
   const auto [huge_status, huge_answer] = post_map(huge);
   EXPECT_EQ(huge_status, 413) << huge_answer.dump();
 
-  // A JSON body sent as a form (curl -d's default) over the HTTP library's form limit: told
-  // how to send it.
+  // A JSON body sent as a form (curl -d's default) over the HTTP library's 8 KiB form limit:
+  // the routes read their bodies themselves, so it is taken as JSON.
   std::string points = R"({"from": "plan", "points": [)";
   for (int i = 0; i < 900; ++i)
     points += i ? ",[1.25,2.5]" : "[1.25,2.5]";
@@ -192,8 +192,7 @@ TEST_F(ViewerServerTest, TooManyPointsOrTooLargeABodyGet413) {
   httplib::Client c = client();
   const httplib::Result form = c.Post("/api/map", points, "application/x-www-form-urlencoded");
   ASSERT_TRUE(form);
-  EXPECT_EQ(form->status, 413);
-  EXPECT_NE(form->body.find("Content-Type: application/json"), std::string::npos) << form->body;
+  EXPECT_EQ(form->status, 200) << form->body;
   EXPECT_EQ(c.Post("/api/map", points, "application/json")->status, 200);
 
   // The server still answers.
