@@ -167,17 +167,15 @@ json metrics_json(const Alignment& a, const std::string& dataset, const Alignmen
           {"scans", c.scans}}},
         {"maps",
          {{"accepted", c.maps_accepted},
-          {"plan_match",
-           c.maps_match.judged ? number(c.maps_match.score.score) : json(nullptr)}}},
-        {"agreement",
-         c.compared ? json{{"agree", c.agree},
-                           {"median_m", number(c.disagreement_median_m)},
-                           {"p90_m", number(c.disagreement_p90_m)},
-                           {"tolerance_m", number(c.disagreement_tolerance_m)},
-                           {"run_scale", number(c.run_scale)},
-                           {"maps_scale", number(c.maps_scale)},
-                           {"scale_tolerance", number(c.scale_tolerance)}}
-                    : json(nullptr)}};
+          {"plan_match", c.maps_match.judged ? number(c.maps_match.score.score) : json(nullptr)}}},
+        {"agreement", c.compared ? json{{"agree", c.agree},
+                                        {"median_m", number(c.disagreement_median_m)},
+                                        {"p90_m", number(c.disagreement_p90_m)},
+                                        {"tolerance_m", number(c.disagreement_tolerance_m)},
+                                        {"run_scale", number(c.run_scale)},
+                                        {"maps_scale", number(c.maps_scale)},
+                                        {"scale_tolerance", number(c.scale_tolerance)}}
+                                 : json(nullptr)}};
   }
   if (a.maps) {
     const MapAlignment& m = *a.maps;

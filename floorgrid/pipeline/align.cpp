@@ -166,11 +166,11 @@ MapAlignment align_on_maps(const AlignmentInputs& in, const AlignmentOptions& op
         options.maps_only.pair_radius, m.fit.score, 100.0 * m.fit.on_walls,
         100.0 * m.fit.in_free_space, m.seconds));
     if (m.runner_up) {
-      notes.push_back(fmt::format(
-          "maps: the best other place, bent as well, has fitness {:.2f} (scale {:.4f}, "
-          "turned {:.1f} deg)",
-          m.runner_up->fit.score, m.runner_up->start.scale,
-          m.runner_up->start.theta * 180.0 / std::numbers::pi));
+      notes.push_back(
+          fmt::format("maps: the best other place, bent as well, has fitness {:.2f} (scale {:.4f}, "
+                      "turned {:.1f} deg)",
+                      m.runner_up->fit.score, m.runner_up->start.scale,
+                      m.runner_up->start.theta * 180.0 / std::numbers::pi));
     }
   }
   if (!m.accepted)
@@ -248,8 +248,7 @@ void use_maps_pairs(Alignment& a, const std::string& why) {
 // Which pairs the job goes on with: the run's judged on their own (the plan match, how much of
 // the building they cover) and against the maps' alignment; the maps' when only they pass or
 // the plan match prefers them; none (the job fails) when neither passes.
-void choose_pair_source(const AlignmentInputs& in, const AlignmentOptions& options,
-                        Alignment& a) {
+void choose_pair_source(const AlignmentInputs& in, const AlignmentOptions& options, Alignment& a) {
   DualLocalization& l = a.localization;
   const PlanLocationOptions& location = options.localization.plan_location;
   RunPairsSummary run{.localized = l.status.ok,
@@ -265,13 +264,12 @@ void choose_pair_source(const AlignmentInputs& in, const AlignmentOptions& optio
     run.pair_scans += r.pairs > 0;
   if (run.localized && l.pairs.size() >= 3) {
     run.match = plan_match_of(in, options, l.pairs);
-    run.match_accepted =
-        plan_match_accepted(run.match, location.min_plan_match, location.max_plan_walls_in_free_space);
+    run.match_accepted = plan_match_accepted(run.match, location.min_plan_match,
+                                             location.max_plan_walls_in_free_space);
   }
-  a.sources = check_pair_sources(run, &*a.maps, in.gridmap, options.sources,
-                                 [&](const ReferencePairs& pairs) {
-                                   return plan_match_of(in, options, pairs);
-                                 });
+  a.sources = check_pair_sources(
+      run, &*a.maps, in.gridmap, options.sources,
+      [&](const ReferencePairs& pairs) { return plan_match_of(in, options, pairs); });
   const PairSourceCheck& c = *a.sources;
   if (c.chosen == "maps") {
     use_maps_pairs(a, c.fallback);
@@ -363,8 +361,8 @@ Alignment align(const AlignmentInputs& in, const AlignmentOptions& options,
   }
   // The pairs' noise is the run's: the maps' pairs have no visits to compare.
   if (a.localization.status.ok)
-    a.pair_noise = pair_noise(a.localized_pairs.size() > 0 ? a.localized_pairs
-                                                           : a.localization.pairs);
+    a.pair_noise =
+        pair_noise(a.localized_pairs.size() > 0 ? a.localized_pairs : a.localization.pairs);
   choose_pair_source(in, options, a);
   if (a.localization.status.ok)
     judge_alignment(in, options, a, progress);

@@ -87,8 +87,8 @@ namespace {
 
 // The run judged on its own: it made pairs, they pass the plan-match check, and they come from
 // enough scans covering enough of the gridmap's walls.
-void judge_run(const RunPairsSummary& run, const OccupancyGrid& gridmap,
-               const PairSourceOptions& o, PairSourceCheck& c) {
+void judge_run(const RunPairsSummary& run, const OccupancyGrid& gridmap, const PairSourceOptions& o,
+               PairSourceCheck& c) {
   c.run_localized = run.localized && run.pairs && run.pairs->size() >= 3;
   c.scans = run.scans;
   c.pair_scans = run.pair_scans;

@@ -54,25 +54,25 @@ void validate(const PairSourceOptions& options, const std::string& prefix = "ali
 /// The run's pairs checked on their own and against the maps' alignment.
 struct PairSourceCheck {
   // The run.
-  bool run_localized = false;     ///< the run made pairs (its localization succeeded)
-  std::string run_failure;        ///< why the run's pairs are not used ("" when they are usable)
-  PlanMatch run_match;            ///< the plan match under the run's pairs
+  bool run_localized = false;  ///< the run made pairs (its localization succeeded)
+  std::string run_failure;     ///< why the run's pairs are not used ("" when they are usable)
+  PlanMatch run_match;         ///< the plan match under the run's pairs
   bool run_match_accepted = false;
-  double coverage = 0.0;          ///< share of the gridmap's wall points the run's pairs cover
-  std::size_t pair_scans = 0;     ///< scans that made pairs
-  std::size_t scans = 0;          ///< scans in the log
-  bool run_accepted = false;      ///< localized, plan match accepted, covering enough
+  double coverage = 0.0;       ///< share of the gridmap's wall points the run's pairs cover
+  std::size_t pair_scans = 0;  ///< scans that made pairs
+  std::size_t scans = 0;       ///< scans in the log
+  bool run_accepted = false;   ///< localized, plan match accepted, covering enough
   // The maps.
   bool maps_accepted = false;  ///< the maps' alignment was accepted (MapAlignment::accepted)
   PlanMatch maps_match;        ///< the plan match under the maps' pairs (when both are judged)
   // The two against each other (when both were accepted).
   bool compared = false;
-  double disagreement_median_m = 0.0;  ///< world metres, over the run's pairs
-  double disagreement_p90_m = 0.0;     ///< world metres
+  double disagreement_median_m = 0.0;     ///< world metres, over the run's pairs
+  double disagreement_p90_m = 0.0;        ///< world metres
   double disagreement_tolerance_m = 0.0;  ///< how far the median may be, world metres
-  double run_scale = 0.0;              ///< the run's plan scale (world metres per plan metre)
-  double maps_scale = 0.0;             ///< the bent map's
-  double scale_tolerance = 0.0;        ///< how far apart the two may be
+  double run_scale = 0.0;                 ///< the run's plan scale (world metres per plan metre)
+  double maps_scale = 0.0;                ///< the bent map's
+  double scale_tolerance = 0.0;           ///< how far apart the two may be
   bool agree = false;
   /// The source whose pairs are used: run, maps, or none (neither passed: the job fails).
   std::string chosen = "none";
@@ -90,15 +90,15 @@ double wall_coverage(const OccupancyGrid& gridmap, const Eigen::Matrix2Xd& point
 
 /// Everything the check needs of the run.
 struct RunPairsSummary {
-  bool localized = false;       ///< the localization succeeded
-  std::string failure;          ///< its message when not
-  const ReferencePairs* pairs;  ///< the run's pairs (plan -> grid)
-  double plan_scale = 1.0;      ///< world metres per plan metre the pairs were made with
-  double noise_m = 0.0;         ///< the pairs' own noise (pair_noise), rms, world metres
-  std::size_t pair_scans = 0;   ///< scans that made pairs
-  std::size_t scans = 0;        ///< scans in the log
-  PlanMatch match;              ///< the plan match under the pairs
-  bool match_accepted = false;  ///< it passed the plan-match check
+  bool localized = false;                 ///< the localization succeeded
+  std::string failure;                    ///< its message when not
+  const ReferencePairs* pairs = nullptr;  ///< the run's pairs (plan -> grid)
+  double plan_scale = 1.0;                ///< world metres per plan metre the pairs were made with
+  double noise_m = 0.0;                   ///< the pairs' own noise (pair_noise), rms, world metres
+  std::size_t pair_scans = 0;             ///< scans that made pairs
+  std::size_t scans = 0;                  ///< scans in the log
+  PlanMatch match;                        ///< the plan match under the pairs
+  bool match_accepted = false;            ///< it passed the plan-match check
 };
 
 /// The pairs of `maps` (grid points) farther than `radius` from every point of `points_in_grid`.

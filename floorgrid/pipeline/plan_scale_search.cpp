@@ -161,7 +161,8 @@ ReckonedScans reckoned_scans(const RobotLog& log, const DualLocalization& result
       sure.push_back(r.scan);
   }
   ReckonedScans out;
-  const std::size_t every = std::max<std::size_t>(1, (sure.size() + at_most - 1) / std::max<std::size_t>(1, at_most));
+  const std::size_t every =
+      std::max<std::size_t>(1, (sure.size() + at_most - 1) / std::max<std::size_t>(1, at_most));
   for (std::size_t k = 0; k < sure.size(); k += every) {
     const ScanRecord& r = result.scans[sure[k]];
     out.scans.push_back(r.scan);
@@ -188,10 +189,9 @@ std::size_t reckoned_inliers(const DualMaps& maps, const ReckonedScans& run, con
       plan = plan.compose({step.x / scale, step.y / scale, step.theta});
     }
     const ScanMatch m =
-        maps.plan_rays()
-            ? match_scan(maps.plan_walls(), run.observations[k], plan, scale, match,
-                         *maps.plan_rays(), options.plan.runner.beam_tolerance)
-            : match_scan(maps.plan_walls(), run.observations[k], plan, scale, match);
+        maps.plan_rays() ? match_scan(maps.plan_walls(), run.observations[k], plan, scale, match,
+                                      *maps.plan_rays(), options.plan.runner.beam_tolerance)
+                         : match_scan(maps.plan_walls(), run.observations[k], plan, scale, match);
     if (m.ok()) {
       plan = m.pose;
       inliers += m.inliers;
@@ -203,8 +203,8 @@ std::size_t reckoned_inliers(const DualMaps& maps, const ReckonedScans& run, con
 /// The candidate whose dead reckoning meets the most walls, refined by a parabola through it
 /// and its neighbours.
 double best_of(const std::vector<double>& scales, const std::vector<std::size_t>& inliers) {
-  const std::size_t b = static_cast<std::size_t>(
-      std::max_element(inliers.begin(), inliers.end()) - inliers.begin());
+  const std::size_t b =
+      static_cast<std::size_t>(std::max_element(inliers.begin(), inliers.end()) - inliers.begin());
   if (b == 0 || b + 1 >= scales.size())
     return scales[b];
   const double y0 = static_cast<double>(inliers[b - 1]), y1 = static_cast<double>(inliers[b]),

@@ -62,6 +62,53 @@ TEST(MapAlignment, BendsTheGridmapOntoTheWallsOfABentBuilding) {
   EXPECT_LT(a.fit.in_free_space, 0.05);
 }
 
+TEST(MapAlignment, ItsWarpFollowsTheTruthBothWaysWithItsScale) {
+  const SimulatedDataset& d = bent_office();
+  const MapAlignment a = align_maps(d.gridmap, plan_grid(d), PlanWalls::vector_lines);
+  ASSERT_TRUE(a.accepted && a.warp);
+  const PlanTruth truth(d.warp, d.plan_scale);
+  std::vector<double> errors, round_trips, headings;
+  for (Eigen::Index i = 0; i < a.pairs.size(); i += 7) {
+    const Eigen::Vector2d g = a.pairs.points_in_grid.col(i);
+    const Eigen::Vector2d p = a.warp->apply(g);
+    errors.push_back((p - truth.grid_to_plan(g).point).norm() / d.plan_scale);
+    round_trips.push_back((a.warp->inverse(p) - g).norm());
+    // A pose's heading turns as the warp turns the space around it.
+    const Pose2 pose{g.x(), g.y(), 0.3};
+    const Pose2 back = a.warp->inverse(a.warp->apply(pose));
+    headings.push_back(std::abs(normalize_angle(back.theta - pose.theta)));
+  }
+  // Nearer the truth than the similarity alone (its pairs, projected onto their walls, nearer
+  // still: above).
+  EXPECT_LT(upper_median(errors), 0.1);
+  EXPECT_LT(upper_median(errors), 0.75 * upper_median(similarity_errors(a, d)));
+  EXPECT_LT(*std::max_element(round_trips.begin(), round_trips.end()), 1e-6);
+  EXPECT_LT(*std::max_element(headings.begin(), headings.end()), 1e-6);
+  // Its scale is the plan's, within the bend's strain (1.5% on a bent office); world metres
+  // per plan metre, as floorplan_scale.
+  EXPECT_NEAR(a.scale.scale * d.plan_scale, 1.0, 0.015);
+  EXPECT_NEAR(a.scale.similarity_scale * d.plan_scale, 1.0, 0.015);
+  EXPECT_GT(a.scale.relative_std, 0.0);
+  EXPECT_LT(a.scale.relative_std, 0.02);
+}
+
+TEST(MapAlignment, TheScaleOfASimilarityWarpIsItsOwn) {
+  MapWarp warp;
+  warp.similarity = {.scale = 0.8, .theta = 0.4, .translation = {3.0, -2.0}};
+  std::vector<Eigen::Vector2d> points;
+  for (int i = 0; i < 50; ++i)
+    points.emplace_back(0.37 * i, std::sin(0.3 * i) * 5.0);
+  const WarpScale s = warp_scale(warp, points);
+  EXPECT_NEAR(s.scale, 1.25, 1e-9);
+  EXPECT_NEAR(s.similarity_scale, 1.25, 1e-9);
+  EXPECT_NEAR(s.relative_std, 0.0, 1e-9);
+  const Pose2 pose{1.0, 2.0, 0.5};
+  const Pose2 mapped = warp.apply(pose);
+  EXPECT_NEAR(mapped.theta, 0.9, 1e-9);
+  EXPECT_NEAR((mapped.translation() - warp.similarity.apply(pose.translation())).norm(), 0.0,
+              1e-12);
+}
+
 TEST(MapAlignment, APartOfTheBuildingFindsItsPlace) {
   const SimulatedDataset& d = bent_office();
   const GridGeometry& g = d.gridmap.geometry();
