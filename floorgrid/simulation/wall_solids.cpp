@@ -131,7 +131,7 @@ cv::Mat grown(const cv::Mat& seeds, double radius, const cv::Mat& ends) {
   cv::Mat near(seeds.size(), CV_8UC1, cv::Scalar(0));
   for (int y = 0; y < seeds.rows; ++y) {
     for (int x = 0; x < seeds.cols; ++x) {
-      if (distance.at<float>(y, x) > radius)
+      if (distance.at<float>(y, x) > radius + 1e-4)  // (0.15 m / 0.025 m is 5.999...)
         continue;
       const cv::Point q = seed_at[static_cast<std::size_t>(labels.at<int>(y, x))];
       const cv::Vec2f out = ends.at<cv::Vec2f>(q);
@@ -199,9 +199,12 @@ void split_inside(WallSolids& solids, const cv::Mat& unknown, double resolution,
   cv::Mat free;
   cv::bitwise_or(solids.walls, unknown, free);
   cv::bitwise_not(free, free);
-  // The free space far from every wall, and which of its pieces touch the raster's edge.
+  // The space far from every wall, and which of its pieces touch the raster's edge; unknown
+  // reaching the edge (a raster's surroundings) is passable there, blank blobs in rooms not.
+  cv::Mat passable;
+  cv::bitwise_or(free, reaching_edge(unknown), passable);
   cv::Mat clearance;
-  cv::distanceTransform(free, clearance, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
+  cv::distanceTransform(passable, clearance, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
   const double seal = seal_radius / resolution;
   cv::Mat core;
   cv::compare(clearance, seal, core, cv::CMP_GT);
