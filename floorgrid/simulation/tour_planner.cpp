@@ -241,7 +241,17 @@ TourPlan plan_tour(const PlanWorld& world, const TourPlanOptions& o, Random& ran
     throw InputError("the robot can reach only " + std::to_string(plan.reachable_area) +
                          " square metres of the inside",
                      "", 0, "plan");
-  auto goals = choose_goals(p, reached, world.regions.size(), o.goal_spacing);
+  // Places at least a few metres apart: in a building of one reachable room the robot still
+  // drives around it.
+  std::vector<std::vector<int>> goals;
+  for (double spacing = o.goal_spacing;; spacing /= 2) {
+    goals = choose_goals(p, reached, world.regions.size(), spacing);
+    std::size_t count = 0;
+    for (const auto& g : goals)
+      count += g.size();
+    if (count >= 3 || spacing < 1.0)
+      break;
+  }
   std::vector<int> reachable;
   for (std::size_t r = 0; r < goals.size(); ++r) {
     if (goals[r].empty())
