@@ -67,7 +67,7 @@ bool move_partition(cv::Mat& ink, const DrawnBuilding& d, const PlanWorldOptions
       for (const double t : {0.25, 0.5, 0.75}) {
         const Eigen::Vector2d p = line.a + (line.b - line.a) * t;
         const Eigen::Vector2d start = p + n * s * (line.half_width + g.resolution);
-        room = room && run_length(d.solids.inside, g, start, n * s, shift + 1.0) >= shift + 1.0;
+        room = room && run_length(d.solids.inside, g, start, n * s, shift + 0.6) >= shift + 0.6;
       }
       if (!room)
         continue;
@@ -127,11 +127,11 @@ bool add_partition(cv::Mat& ink, const DrawnBuilding& d, Random& random,
         region.centre + longer * random.uniform(-0.15, 0.15) * size.maxCoeff();
     if (!is_set(d.solids.inside, pixel_of(g, c)))
       continue;
-    const double free_before = run_length(d.solids.inside, g, c, -longer, 2.2);
-    const double free_after = run_length(d.solids.inside, g, c, longer, 2.2);
+    const double free_before = run_length(d.solids.inside, g, c, -longer, 1.5);
+    const double free_after = run_length(d.solids.inside, g, c, longer, 1.5);
     const double r0 = run_length(d.solids.inside, g, c, -across, 30.0);
     const double r1 = run_length(d.solids.inside, g, c, across, 30.0);
-    if (free_before < 2.2 || free_after < 2.2 || r0 + r1 < 2.5 || r0 + r1 >= 30.0)
+    if (free_before < 1.5 || free_after < 1.5 || r0 + r1 < 2.2 || r0 + r1 >= 30.0)
       continue;
     const Eigen::Vector2d e0 = c - across * (r0 + g.resolution);
     const Eigen::Vector2d e1 = c + across * (r1 + g.resolution);

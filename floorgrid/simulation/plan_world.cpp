@@ -141,6 +141,7 @@ PlanWorld build_plan_world(const PlanDrawing& drawing, double plan_scale, const 
   canvas.glass = cv::Mat(ink.size(), CV_8UC1, cv::Scalar(0));
   canvas.solid = canvas.solids.walls.clone();
   canvas.world = &world;
+  canvas.clearance = robot_clearance;
   for (std::size_t r = 0; r < canvas.rooms.regions.size(); ++r) {
     if (canvas.start_region < 0 ||
         canvas.rooms.regions[r].area >
@@ -150,7 +151,7 @@ PlanWorld build_plan_world(const PlanDrawing& drawing, double plan_scale, const 
   fit_doors(canvas, o, fittings_random);
   fit_glass(canvas, ink, lines, o, fittings_random);
   fit_columns(canvas, main_angle, o, fittings_random);
-  furnish(canvas, main_angle, o, robot_clearance, fittings_random);
+  furnish(canvas, main_angle, o, fittings_random);
 
   world.regions = canvas.rooms.regions;
   world.walls = outline_segments(simplified_outlines(canvas.solids.walls, kOutlineTolerance), frame,

@@ -18,6 +18,8 @@ namespace {
 
 constexpr double kMinCoreArea = 0.25;  // square metres: smaller cores are noise, not rooms
 constexpr double kSnapRange = 0.6;     // metres: an opening is looked for this far either side
+constexpr double kWallBehind = 0.25;   // metres of wall behind each jamb of a doorway
+constexpr double kRaggedness = 0.05;   // metres a drawn wall's face may wander
 
 // Every inside pixel joins the core it reaches first (4-connected breadth-first growth).
 void grow_cores(const cv::Mat& inside, cv::Mat& labels) {
@@ -225,11 +227,19 @@ std::vector<std::vector<std::pair<int, int>>> cluster(
   return out;
 }
 
+// The solids' complements an opening is measured on.
+struct OpenSpace {
+  cv::Mat open;        // not wall
+  cv::Mat known_free;  // inside or outside
+};
+
 // Measures an opening from its contact points: the narrowest cross-section between walls
 // near them, the walls' thickness and centre line at its ends.
 Opening measure_opening(const std::vector<std::pair<int, int>>& points, int a, int b,
-                        const WallSolids& s, const cv::Mat& labels, const GridGeometry& g,
-                        const PlanWorldOptions& o) {
+                        const WallSolids& s, const OpenSpace& space, const cv::Mat& labels,
+                        const GridGeometry& g, const PlanWorldOptions& o) {
+  const cv::Mat& open = space.open;
+  const cv::Mat& known_free = space.known_free;
   Eigen::Matrix2Xd world(2, static_cast<Eigen::Index>(points.size()));
   for (std::size_t i = 0; i < points.size(); ++i) {
     world.col(static_cast<Eigen::Index>(i)) =
@@ -248,8 +258,6 @@ Opening measure_opening(const std::vector<std::pair<int, int>>& points, int a, i
                         probe.y < labels.rows && labels.at<int>(probe) == a;
   if (!a_behind)
     op.across = -op.across;
-  cv::Mat open;  // what is not wall
-  cv::bitwise_not(s.walls, open);
   const double extent = (op.along.transpose() * centred).cwiseAbs().maxCoeff();
   const double limit = extent + 1.0;
   // The narrowest cross-section within kSnapRange along the normal is the wall's line.
@@ -290,15 +298,26 @@ Opening measure_opening(const std::vector<std::pair<int, int>>& points, int a, i
   op.centre = (op.jamb_a + op.jamb_b) / 2;
   const double width = op.width();
   bool widens = true;
-  cv::Mat known_free;
-  cv::bitwise_or(s.inside, s.outside, known_free);
   for (const double side : {-1.0, 1.0}) {
     const Eigen::Vector2d q = c + op.across * side * (op.wall_thickness / 2 + 0.35);
     const double span = run_length(known_free, g, q, op.along, width + 1.0) +
                         run_length(known_free, g, q, -op.along, width + 1.0);
     widens = widens && span > width + 0.3;
   }
-  op.doorway = op.bounded && widens && width >= o.doorway_width.min && width <= o.doorway_width.max;
+  // A doorway's jambs are ends of a wall that goes on behind them (not a stub standing in a
+  // corridor, nor the side of a wall across it).
+  // (Three parallel rays: a wall a SLAM map drew is ragged.)
+  const auto wall_behind = [&](const Eigen::Vector2d& jamb, const Eigen::Vector2d& out) {
+    double most = 0.0;
+    for (const double side : {-kRaggedness, 0.0, kRaggedness}) {
+      const Eigen::Vector2d from = jamb + out * g.resolution + op.across * side;
+      most = std::max(most, run_length(s.walls, g, from, out, kWallBehind));
+    }
+    return most >= kWallBehind;
+  };
+  const bool walled =
+      op.bounded && wall_behind(op.jamb_a, -op.along) && wall_behind(op.jamb_b, op.along);
+  op.doorway = walled && widens && width >= o.doorway_width.min && width <= o.doorway_width.max;
   return op;
 }
 
@@ -314,12 +333,15 @@ RoomSegmentation segment_rooms(const WallSolids& solids, const GridGeometry& geo
   const int count = label_regions(solids.inside, barriers, options.door_core_radius / h, h,
                                   options.min_region_area, seg.labels);
   seg.regions = describe_regions(seg.labels, depth, count, geometry);
+  OpenSpace space;
+  cv::bitwise_not(solids.walls, space.open);
+  cv::bitwise_or(solids.inside, solids.outside, space.known_free);
   for (const auto& [key, points] : find_contacts(seg.labels, solids.outside)) {
     for (const auto& group : cluster(points)) {
       if (group.size() < 3)
         continue;
-      seg.openings.push_back(
-          measure_opening(group, key.first, key.second, solids, seg.labels, geometry, options));
+      seg.openings.push_back(measure_opening(group, key.first, key.second, solids, space,
+                                             seg.labels, geometry, options));
     }
   }
   return seg;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <numeric>
 #include <opencv2/imgproc.hpp>
 #include <set>
 
@@ -16,38 +17,45 @@ constexpr double kDegree = std::numbers::pi / 180.0;
 constexpr double kGlassThickness = 0.05;  // metres: a pane sealing a wide outer opening
 constexpr double kMullionWidth = 0.06;    // metres along the glass
 constexpr double kDoubleDoor = 1.25;      // metres: wider doorways have a pair of leaves
+constexpr double kMargin = 0.1;           // metres a robot needs beyond its clearance to pass
 
-// Regions the start reaches through openings not in `closed`.
-std::size_t reachable(const WorldCanvas& c, const std::set<std::size_t>& closed) {
-  const auto& regions = c.rooms.regions;
-  std::vector<char> seen(regions.size(), 0);
+// Which regions the start reaches through the openings not in `closed` (by the openings'
+// graph, not yet by a robot's size).
+std::vector<char> reached_through(const WorldCanvas& c, const std::set<std::size_t>& closed) {
+  std::vector<char> seen(c.rooms.regions.size(), 0);
   if (c.start_region < 0)
-    return 0;
+    return seen;
   std::vector<int> stack{c.start_region};
   seen[static_cast<std::size_t>(c.start_region)] = 1;
-  std::size_t count = 1;
   while (!stack.empty()) {
     const int r = stack.back();
     stack.pop_back();
     for (std::size_t i = 0; i < c.rooms.openings.size(); ++i) {
       const Opening& op = c.rooms.openings[i];
-      if (closed.count(i) || op.region_b < 0 || (op.region_a != r && op.region_b != r))
+      // (A gap the robot does not fit through is no way in.)
+      if (closed.count(i) || op.region_b < 0 || (op.region_a != r && op.region_b != r) ||
+          op.width() < 2 * c.clearance + kMargin)
         continue;
       const int other = op.region_a == r ? op.region_b : op.region_a;
       if (!seen[static_cast<std::size_t>(other)]) {
         seen[static_cast<std::size_t>(other)] = 1;
-        ++count;
         stack.push_back(other);
       }
     }
   }
-  return count;
+  return seen;
+}
+
+// How many regions the start reaches through the openings not in `closed`.
+std::size_t reachable(const WorldCanvas& c, const std::set<std::size_t>& closed) {
+  const std::vector<char> seen = reached_through(c, closed);
+  return static_cast<std::size_t>(std::count(seen.begin(), seen.end(), 1));
 }
 
 // Which doorways get a closed leaf: first one whose closing cuts off exactly one room (a
-// room never visited), then others that cut off no more.
+// room never visited: `shut_room`, or -1), then others that cut off no more.
 std::set<std::size_t> choose_closed(const WorldCanvas& c, const std::vector<std::size_t>& leaves,
-                                    double fraction, Random& random) {
+                                    double fraction, Random& random, int& shut_room) {
   std::set<std::size_t> closed;
   std::vector<std::size_t> order = leaves;
   for (std::size_t i = order.size(); i > 1; --i)
@@ -71,10 +79,16 @@ std::set<std::size_t> choose_closed(const WorldCanvas& c, const std::vector<std:
     closed.erase(i);
   }
   std::sort(cutting.begin(), cutting.end());
+  shut_room = -1;
   if (!cutting.empty()) {
     const auto pick =
         random.integer(0, std::min<std::int64_t>(2, std::int64_t(cutting.size()) - 1));
-    closed.insert(cutting[static_cast<std::size_t>(pick)].second);
+    const std::size_t door = cutting[static_cast<std::size_t>(pick)].second;
+    closed.insert(door);
+    // The room cut off is the one the start no longer reaches.
+    const Opening& op = c.rooms.openings[door];
+    shut_room = reached_through(c, {door})[static_cast<std::size_t>(op.region_a)] ? op.region_b
+                                                                                  : op.region_a;
   }
   const std::size_t floor = reachable(c, closed);
   for (const std::size_t i : order) {
@@ -131,8 +145,99 @@ void WorldCanvas::add(WorldObject object) {
   world->objects.push_back(std::move(object));
 }
 
+void WorldCanvas::redraw_solid() {
+  cv::bitwise_or(solids.walls, glass, solid);
+  for (const WorldObject& object : world->objects)
+    fill_outline(solid, geometry, object.outline);
+}
+
+cv::Mat WorldCanvas::reachable_space(cv::Mat* free_space) const {
+  cv::Mat walkable;
+  cv::bitwise_not(solid, walkable);
+  cv::bitwise_and(walkable, solids.inside, walkable);
+  cv::Mat room, free, labels;
+  cv::distanceTransform(walkable, room, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
+  cv::compare(room, clearance / geometry.resolution + 0.5, free, cv::CMP_GT);
+  const int count = cv::connectedComponents(free, labels, 8, CV_32S);
+  // The robot's piece: the one most of the start region lies in.
+  std::vector<std::size_t> in_start(static_cast<std::size_t>(count), 0);
+  for (int y = 0; y < labels.rows; ++y) {
+    for (int x = 0; x < labels.cols; ++x) {
+      if (rooms.labels.at<int>(y, x) == start_region)
+        ++in_start[static_cast<std::size_t>(labels.at<int>(y, x))];
+    }
+  }
+  in_start[0] = 0;
+  const auto home =
+      static_cast<int>(std::max_element(in_start.begin(), in_start.end()) - in_start.begin());
+  cv::Mat space = labels == home;
+  if (home == 0)
+    space.setTo(0);
+  if (free_space != nullptr)
+    *free_space = free;
+  return space;
+}
+
+std::vector<std::size_t> WorldCanvas::unblock(const cv::Mat& before, int shut_room,
+                                              const std::function<bool(std::size_t)>& removable) {
+  std::vector<std::size_t> original(world->objects.size()), removed;
+  std::iota(original.begin(), original.end(), std::size_t{0});
+  const double reach = clearance / geometry.resolution + 2.0;
+  for (int round = 0; round < 3; ++round) {
+    cv::Mat free;
+    const cv::Mat now = reachable_space(&free);
+    cv::Mat lost = before & free & ~now;
+    if (shut_room >= 0)
+      lost.setTo(0, rooms.labels == shut_room);
+    if (cv::countNonZero(lost) == 0)
+      break;
+    // Between the two: within the robot's clearance of both.
+    cv::Mat near_lost, near_now;
+    cv::compare(distance_to(lost), reach, near_lost, cv::CMP_LE);
+    cv::compare(distance_to(now), reach, near_now, cv::CMP_LE);
+    std::vector<char> drop(world->objects.size(), 0);
+    for (std::size_t k = 0; k < drop.size(); ++k) {
+      const auto& outline = world->objects[k].outline;
+      drop[k] = removable(original[k]) && outline_pixels(near_lost, geometry, outline).second > 0 &&
+                outline_pixels(near_now, geometry, outline).second > 0;
+    }
+    if (std::count(drop.begin(), drop.end(), 1) == 0)
+      break;
+    std::vector<WorldObject> kept;
+    std::vector<std::size_t> kept_original;
+    for (std::size_t k = 0; k < drop.size(); ++k) {
+      if (drop[k]) {
+        removed.push_back(original[k]);
+        continue;
+      }
+      kept.push_back(std::move(world->objects[k]));
+      kept_original.push_back(original[k]);
+    }
+    world->objects = std::move(kept);
+    original = std::move(kept_original);
+    redraw_solid();
+  }
+  return removed;
+}
+
+std::vector<char> WorldCanvas::reachable() const {
+  const cv::Mat space = reachable_space();
+  std::vector<char> reached(rooms.regions.size(), 0);
+  for (int y = 0; y < space.rows; ++y) {
+    for (int x = 0; x < space.cols; ++x) {
+      const int r = rooms.labels.at<int>(y, x);
+      if (r >= 0 && space.at<std::uint8_t>(y, x))
+        reached[static_cast<std::size_t>(r)] = 1;
+    }
+  }
+  return reached;
+}
+
 void fit_doors(WorldCanvas& c, const PlanWorldOptions& o, Random& random) {
   const auto& openings = c.rooms.openings;
+  const cv::Mat before = c.reachable_space();
+  std::vector<std::pair<std::size_t, std::size_t>> leaf_of;  // object index, door index
+  int shut_door = -1;
   std::vector<std::size_t> leaves;
   std::vector<char> has_leaf(openings.size(), 0);
   for (std::size_t i = 0; i < openings.size(); ++i) {
@@ -141,7 +246,9 @@ void fit_doors(WorldCanvas& c, const PlanWorldOptions& o, Random& random) {
       has_leaf[i] = 1;
     }
   }
-  const std::set<std::size_t> closed = choose_closed(c, leaves, o.closed_fraction, random);
+  int shut_room = -1;
+  const std::set<std::size_t> closed =
+      choose_closed(c, leaves, o.closed_fraction, random, shut_room);
   for (std::size_t i = 0; i < openings.size(); ++i) {
     const Opening& op = openings[i];
     WorldDoor door{op.jamb_a, op.jamb_b, "none", op.region_a, op.region_b};
@@ -188,22 +295,36 @@ void fit_doors(WorldCanvas& c, const PlanWorldOptions& o, Random& random) {
         });
         if (!fit)
           continue;
-        for (auto& outline : swung)
+        for (auto& outline : swung) {
+          leaf_of.emplace_back(c.world->objects.size(), c.world->doors.size());
           c.add({SurfaceKind::door_leaf, "door", std::move(outline), op.region_a});
+        }
         door.state = "open";
       }
     }
     if (door.state == "closed") {
       for (const double offset :
            pair ? std::vector<double>{-0.25, 0.25} : std::vector<double>{0.0}) {
+        leaf_of.emplace_back(c.world->objects.size(), c.world->doors.size());
         c.add({SurfaceKind::door_leaf, "door",
                oriented_box(op.centre + op.along * (offset * op.width()), op.along, leaf,
                             o.leaf_thickness),
                op.region_a});
       }
     }
+    if (closed.count(i) && (op.region_a == shut_room || op.region_b == shut_room))
+      shut_door = static_cast<int>(c.world->doors.size());
     c.world->doors.push_back(door);
   }
+  // Leaves (but the shut room's) between the robot and space it reached without them go.
+  std::vector<int> door_of_object(c.world->objects.size(), -1);
+  for (const auto& [object, door] : leaf_of)
+    door_of_object[object] = static_cast<int>(door);
+  const auto removed = c.unblock(before, shut_room, [&](std::size_t k) {
+    return door_of_object[k] >= 0 && door_of_object[k] != shut_door;
+  });
+  for (const std::size_t k : removed)
+    c.world->doors[static_cast<std::size_t>(door_of_object[k])].state = "none";
 }
 
 void fit_glass(WorldCanvas& c, const cv::Mat& ink, const std::vector<WallLine>& lines,

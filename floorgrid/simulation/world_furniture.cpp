@@ -196,88 +196,10 @@ struct Furnisher {
   }
 };
 
-// Which regions the robot (its centre `clearance` from anything solid) reaches from the start
-// region.
-std::vector<char> reachable_regions(const WorldCanvas& c, double clearance) {
-  cv::Mat walkable;
-  cv::bitwise_not(c.solid, walkable);
-  cv::bitwise_and(walkable, c.solids.inside, walkable);
-  cv::Mat room, free, labels;
-  cv::distanceTransform(walkable, room, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
-  cv::compare(room, clearance / c.geometry.resolution + 0.5, free, cv::CMP_GT);
-  const int count = cv::connectedComponents(free, labels, 8, CV_32S);
-  std::vector<std::size_t> in_start(static_cast<std::size_t>(count), 0);
-  for (int y = 0; y < labels.rows; ++y) {
-    for (int x = 0; x < labels.cols; ++x) {
-      if (c.rooms.labels.at<int>(y, x) == c.start_region)
-        ++in_start[static_cast<std::size_t>(labels.at<int>(y, x))];
-    }
-  }
-  in_start[0] = 0;
-  const auto home =
-      static_cast<int>(std::max_element(in_start.begin(), in_start.end()) - in_start.begin());
-  std::vector<char> reached(c.rooms.regions.size(), 0);
-  for (int y = 0; y < labels.rows; ++y) {
-    for (int x = 0; x < labels.cols; ++x) {
-      const int r = c.rooms.labels.at<int>(y, x);
-      if (r >= 0 && home > 0 && labels.at<int>(y, x) == home)
-        reached[static_cast<std::size_t>(r)] = 1;
-    }
-  }
-  return reached;
-}
-
-// Takes away furniture that cut the robot off from regions it reached before: first the
-// pieces near the lost regions' openings, then all of theirs and their neighbours'.
-void keep_reachable(WorldCanvas& c, double clearance, const std::vector<char>& before) {
-  for (int round = 0; round < 3; ++round) {
-    const std::vector<char> now = reachable_regions(c, clearance);
-    std::vector<char> lost(now.size(), 0);
-    bool any = false;
-    for (std::size_t r = 0; r < now.size(); ++r) {
-      lost[r] = before[r] && !now[r];
-      any = any || lost[r];
-    }
-    if (!any)
-      return;
-    std::vector<Eigen::Vector2d> doors;
-    std::vector<char> nearby = lost;
-    for (const Opening& op : c.rooms.openings) {
-      const bool touches = (op.region_a >= 0 && lost[static_cast<std::size_t>(op.region_a)]) ||
-                           (op.region_b >= 0 && lost[static_cast<std::size_t>(op.region_b)]);
-      if (!touches)
-        continue;
-      doors.push_back(op.centre);
-      for (const int r : {op.region_a, op.region_b}) {
-        if (r >= 0)
-          nearby[static_cast<std::size_t>(r)] = 1;
-      }
-    }
-    auto& objects = c.world->objects;
-    objects.erase(std::remove_if(objects.begin(), objects.end(),
-                                 [&](const WorldObject& object) {
-                                   if (object.kind != SurfaceKind::furniture || object.region < 0 ||
-                                       !nearby[static_cast<std::size_t>(object.region)])
-                                     return false;
-                                   if (round > 0)
-                                     return true;
-                                   return std::any_of(
-                                       doors.begin(), doors.end(), [&](const Eigen::Vector2d& d) {
-                                         return (object.outline.front() - d).norm() < 2.5;
-                                       });
-                                 }),
-                  objects.end());
-    cv::bitwise_or(c.solids.walls, c.glass, c.solid);
-    for (const WorldObject& object : objects)
-      fill_outline(c.solid, c.geometry, object.outline);
-  }
-}
-
 }  // namespace
 
-void furnish(WorldCanvas& c, double main_angle, const PlanWorldOptions& o, double clearance,
-             Random& random) {
-  const std::vector<char> before = reachable_regions(c, clearance);
+void furnish(WorldCanvas& c, double main_angle, const PlanWorldOptions& o, Random& random) {
+  const cv::Mat before = c.reachable_space();
   Furnisher f{c, o, random, {std::cos(main_angle), std::sin(main_angle)}, {}, {}, {}};
   f.keep_free = cv::Mat(c.solid.size(), CV_8UC1, cv::Scalar(0));
   f.taken = cv::Mat(c.solid.size(), CV_8UC1, cv::Scalar(0));
@@ -300,7 +222,11 @@ void furnish(WorldCanvas& c, double main_angle, const PlanWorldOptions& o, doubl
     if (region.kind != "corridor" && region.area >= 9.0)
       f.stand_free(region, static_cast<int>(r), room_around);
   }
-  keep_reachable(c, clearance, before);
+  // Pieces between the robot and space it reached before them go again.
+  std::vector<char> piece(c.world->objects.size());
+  for (std::size_t k = 0; k < piece.size(); ++k)
+    piece[k] = c.world->objects[k].kind == SurfaceKind::furniture;
+  c.unblock(before, -1, [&](std::size_t k) { return piece[k] != 0; });
 }
 
 }  // namespace floorgrid::plan_world
