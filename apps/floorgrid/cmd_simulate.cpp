@@ -219,7 +219,8 @@ void add_simulate_command(CLI::App& root) {
       ->capture_default_str();
   cmd->add_option("--out", args->out, "output folder (created if needed)")->required();
   cmd->add_flag("--preview", args->preview,
-                "also write preview.png: the gridmap with the plan's walls through the exact warp");
+                "also write preview.png: the gridmap with the plan's walls through the exact warp "
+                "(and, from a drawing, world.png: the world built, its tour and its errors)");
   auto* from_log =
       cmd->add_option(
              "--from-log", args->from_log,
@@ -238,14 +239,19 @@ void add_simulate_command(CLI::App& root) {
   const auto needs_log = [&](CLI::Option* option) { option->needs(from_log); };
   const auto needs_plan = [&](CLI::Option* option) { option->needs(from_plan); };
   // Shared by --from-log and --from-plan (checked in the callback: CLI11 needs one option).
+  const PlanDatasetOptions plan_defaults;
   auto* plan_scale = cmd->add_option(
       "--plan-scale", args->plan_scale,
-      "from a log or a drawing: the plan's true floorplan_scale (world m per plan m); default: "
-      "log-uniform in 0.5-2 by the seed (a DXF drawing's lower end raised so that its doorways "
-      "stay 0.8 m wide)");
-  auto* bend = cmd->add_option("--bend", args->bend,
-                               "from a log or a drawing: metres the far end of the long axis "
-                               "bends; default: 0.2-1 by the seed");
+      fmt::format("from a log or a drawing: the plan's true floorplan_scale (world m per plan m); "
+                  "default: log-uniform in {}-{} by the seed (a DXF drawing's lower end raised "
+                  "so that its doorways stay {} m wide)",
+                  plan_defaults.min_plan_scale, plan_defaults.max_plan_scale,
+                  plan_defaults.min_doorway));
+  auto* bend =
+      cmd->add_option("--bend", args->bend,
+                      fmt::format("from a log or a drawing: metres the far end of the "
+                                  "long axis bends; default: {}-{} by the seed",
+                                  plan_defaults.bend_range.min, plan_defaults.bend_range.max));
   auto* rotation = cmd->add_option("--rotation", args->rotation,
                                    "from a log or a drawing: degrees the plan is turned against "
                                    "the gridmap; default: any, by the seed");
@@ -256,9 +262,14 @@ void add_simulate_command(CLI::App& root) {
                              "from a drawing that is a bare image: origin x,y,yaw (metres, "
                              "radians; default 0,0,0)"));
   needs_plan(cmd->add_option("--drawing-errors", args->drawing_errors,
-                             "from a drawing: some = the world differs from it in three places "
-                             "(a partition moved 0.2-0.6 m, one added or removed, a door "
-                             "shifted 0.3-1 m along its wall); none = built as drawn")
+                             fmt::format("from a drawing: some = the world differs from it in "
+                                         "three places (a partition moved {}-{} m, one added or "
+                                         "removed, a door shifted {}-{} m along its wall); none = "
+                                         "built as drawn",
+                                         plan_defaults.world.partition_shift.min,
+                                         plan_defaults.world.partition_shift.max,
+                                         plan_defaults.world.door_shift.min,
+                                         plan_defaults.world.door_shift.max))
                  ->check(CLI::IsMember({"none", "some"}))
                  ->capture_default_str());
   needs_log(cmd->add_option("--plan-format", args->plan_format,

@@ -153,6 +153,9 @@ void validate_plan_dataset_options(const PlanDatasetOptions& o) {
   if (!(o.min_plan_scale > 0.0 && o.max_plan_scale >= o.min_plan_scale &&
         std::isfinite(o.max_plan_scale)))
     throw InputError("must be 0 < min <= max", "", 0, "plan_scale_range");
+  if (!(o.bend_range.min >= 0.0 && o.bend_range.max >= o.bend_range.min &&
+        o.bend_range.max <= 20.0))
+    throw InputError("must be 0 <= min <= max <= 20 metres", "", 0, "bend_range");
   if (!(o.min_doorway > 0.0 && std::isfinite(o.min_doorway)))
     throw InputError("must be a finite number > 0", "", 0, "min_doorway");
   if (!(o.tour.clearance > 0.0 && o.tour.resolution > 0.0 && o.tour.goal_spacing > 0.0 &&
@@ -183,7 +186,7 @@ PlanDataset simulate_from_plan(const PlanDrawing& drawing, const PlanDatasetOpti
   }
   s.plan_scale = *o.plan_scale;
   if (!o.bend)
-    o.bend = choices.uniform(0.2, 1.0);
+    o.bend = choices.uniform(o.bend_range.min, o.bend_range.max);
   const double bend_sign = choices.bernoulli(0.5) ? 1.0 : -1.0;
   if (!o.rotation_deg)
     o.rotation_deg = choices.uniform(-180.0, 180.0);

@@ -35,8 +35,10 @@ struct PlanDatasetOptions {
   double min_plan_scale = 0.5;  ///< of the default range
   double max_plan_scale = 2.0;  ///< of the default range
   double min_doorway = 0.8;     ///< metres, see plan_scale
-  /// Metres the far end of the building's long axis bends sideways. Unset: uniform in [0.2, 1].
+  /// Metres the far end of the building's long axis bends sideways. Unset: uniform in
+  /// `bend_range`.
   std::optional<double> bend;
+  UniformRange bend_range{0.2, 1.0};  ///< metres, of the default bend
   /// Degrees the gridmap is turned against the world. Unset: uniform in [-180, 180).
   std::optional<double> rotation_deg;
   bool drawing_errors = false;  ///< the world differs from the drawing in a few places
