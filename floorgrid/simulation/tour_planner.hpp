@@ -13,7 +13,7 @@ struct TourPlanOptions {
   double clearance = 0.3;      ///< metres from the robot's centre to anything solid
   double resolution = 0.05;    ///< metres per cell of the planning grid
   double goal_spacing = 4.0;   ///< metres between the places visited in one region
-  double max_length = 330.0;   ///< metres: the tour stops once it is this long
+  double max_length = 240.0;   ///< metres: the tour stops once it is this long
   double wall_distance = 0.8;  ///< metres: paths keep this far from walls where they can
   double wall_penalty = 3.0;   ///< extra cost per metre driven right at the clearance
 };
