@@ -17,8 +17,10 @@
 
 namespace floorgrid {
 
-/// A drawing to build a world from, in the drawing's own coordinates (plan metres): a raster
-/// (its cells as read, occupied = ink) or vector walls.
+/// A drawing to build a world from: a raster (its cells as read, occupied = ink, at its stated
+/// resolution, which the world keeps: the dataset's plan is the raster with its resolution and
+/// origin divided by the plan scale) or vector walls in the drawing's metres (the plan itself:
+/// the world is their copy scaled by the plan scale).
 struct PlanDrawing {
   std::optional<OccupancyGrid> raster;  ///< a raster drawing; when absent, `vector` is used
   VectorFloorplan vector;               ///< vector walls (a DXF's chosen layers)
@@ -81,9 +83,8 @@ struct PlanDatasetStatistics {
 /// A dataset made from a real drawing: the world built from it, a robot's run through that
 /// world, a SLAM-like gridmap of the run through a known warp, and the exact truth.
 ///
-/// Frames: the plan is the drawing's own coordinates; the world is the plan times plan_scale
-/// (world metres per plan metre), so PlanTruth's plan_per_world is 1 / plan_scale; the gridmap
-/// is the world through `warp`.
+/// Frames: the world is the plan times plan_scale (world metres per plan metre), so PlanTruth's
+/// plan_per_world is 1 / plan_scale; the gridmap is the world through `warp`.
 struct PlanDataset {
   PlanDatasetOptions options;              ///< with every choice made
   PlanWorld world;                         ///< the building the laser sees and the robot drives
