@@ -13,15 +13,26 @@
 # Last, the robustness issue's bars counted over the rows, with the rows that miss each, and
 # how far std_m's level is off: median std_m over median true error per row and model.
 #
+# Then the real drawings (simulate --from-plan: a world built from the drawing, a robot's run
+# through it, a SLAM-like gridmap with a bend and a turned room; the plan is the drawing as
+# given): Freiburg 079's floorplan.png, the Halmstad E5/F5/HIH layouts, the Bonn FMap/GMap/
+# YouBotMap, the DXF house plan and house site, seeds 1-3, the world differing from the drawing
+# (--drawing-errors some) on seeds 2 and 3. The same columns; fmt is the drawing's (png, pgm,
+# dxf), set says tuned or held-out and "+errors" where the world differs from the drawing.
+#
 # Usage: bench/real_matrix.sh [build-dir] [work-dir] [seeds] [options.yaml]   (seeds default
-# "1 2 3"; the options file, as `floorgrid config --dump` prints it, is passed to every align)
+# "1 2 3"; the options file, as `floorgrid config --dump` prints it, is passed to every align;
+# ROWS=logs or ROWS=drawings runs only the semi-real rows or only the drawings' rows)
 # Set tuned: ACES seed 1 was looked at while developing; every other row is held out. (The wall
 # slide's two rounds were chosen with seeds 1-3 in view; seeds 4 and 5 were run only after, as
-# its held-out check: `bench/real_matrix.sh build DIR "4 5"`.)
+# its held-out check: `bench/real_matrix.sh build DIR "4 5"`.) Drawings: fr079, F5, GMap and
+# the house plan, seeds 1 and 2, are the ones to tune on; E5, HIH, FMap, YouBotMap and the house
+# site, and seed 3 of every drawing, are held out.
 set -uo pipefail
 build=${1:-build}
 work=${2:-$(mktemp -d)}
 seeds=${3:-1 2 3}
+rows=${ROWS:-all}
 config=()
 [ -n "${4:-}" ] && config=(--config "$4")
 bin="$build/floorgrid"
@@ -33,28 +44,15 @@ for name in aces csail orebro fhw belgioioso seattle; do
   [ -f "$data/carmen/$name-corrected.log.gz" ] && logs+=("$data/carmen/$name-corrected.log.gz")
 done
 [ -f "$data/fr079/freiburg-079-corrected.log.gz" ] && logs+=("$data/fr079/freiburg-079-corrected.log.gz")
-[ ${#logs[@]} -eq 0 ] && { echo "no logs under $data"; exit 1; }
+[ ${#logs[@]} -eq 0 ] && [ "$rows" != drawings ] && { echo "no logs under $data"; exit 1; }
 calibration="$work/calibration.txt"
 : > "$calibration"
 
-printf '%-11s %4s %3s %5s %6s %7s %7s %7s %7s %7s %7s %7s %7s %7s %7s %-5s %6s %6s %3s %s\n' \
-  log seed fmt scans conv sc_true sc_est sc_err% fit_err% pair_md gt gp gpgt tps dt auto a/best \
-  time_s rc set
-for log in "${logs[@]}"; do
-  name=$(basename "$log" | sed 's/-corrected.log.gz//; s/freiburg-079/fr079/')
-  for seed in $seeds; do
-    d="$work/$name-$seed"
-    format=png
-    [ "$seed" = 3 ] && format=dxf
-    set_name=held-out
-    [ "$name" = aces ] && [ "$seed" = 1 ] && set_name=tuned
-    "$bin" simulate --from-log "$log" --seed "$seed" --plan-format "$format" --out "$d/dataset" \
-      > "$d.simulate.log" 2>&1 || { echo "$name $seed: simulate failed (see $d.simulate.log)"; continue; }
-    start=$(date +%s.%N)
-    "$bin" align "$d/dataset" "${config[@]}" --out "$d/align" > "$d/align.log" 2>&1
-    rc=$?
-    end=$(date +%s.%N)
-    /usr/bin/python3 - "$d" "$name" "$seed" "$set_name" >> "$calibration" <<'PY'
+# One row of the main table and one of the calibration table, from a row's folder ($d holds
+# dataset/ and align/).
+print_rows() {  # d name seed format seconds rc set
+  local d=$1 name=$2 seed=$3 format=$4 seconds=$5 rc=$6 set_name=$7
+  /usr/bin/python3 - "$d" "$name" "$seed" "$set_name" >> "$calibration" <<'PY'
 import json, os, sys
 d, name, seed, set_name = sys.argv[1:5]
 path = f"{d}/align/metrics.json"
@@ -70,7 +68,7 @@ for k in models:
 noise = "-" if noise is None else f"{100 * noise:.1f}"
 print(f"{name:<11} {seed:>4} " + " ".join(f"{c:>12}" for c in cells) + f" {noise:>5} {set_name}")
 PY
-    /usr/bin/python3 - "$d" "$name" "$seed" "$format" "$(echo "$end - $start" | bc)" "$rc" "$set_name" <<'PY'
+  /usr/bin/python3 - "$d" "$name" "$seed" "$format" "$seconds" "$rc" "$set_name" <<'PY'
 import json, os, sys
 d, name, seed, fmt, seconds, rc, set_name = sys.argv[1:8]
 t = json.load(open(f"{d}/dataset/truth.json"))
@@ -99,8 +97,73 @@ print(f"{name:<11} {seed:>4} {fmt:>3} {scans:5d} {f(m['pairs'].get('converged_fr
       f"{f(e('tps')):>7} {f(e('dt')):>7} {chosen:<5} "
       f"{f(None if auto is None or not best else auto / best, 2):>6} {float(seconds):6.1f} {rc:>3} {set_name}")
 PY
+}
+
+# Aligns the dataset in $d/dataset and prints its rows.
+align_and_print() {  # d name seed format set
+  local d=$1
+  local start end rc
+  start=$(date +%s.%N)
+  "$bin" align "$d/dataset" "${config[@]}" --out "$d/align" > "$d/align.log" 2>&1
+  rc=$?
+  end=$(date +%s.%N)
+  print_rows "$d" "$2" "$3" "$4" "$(echo "$end - $start" | bc)" "$rc" "$5"
+}
+
+printf '%-11s %4s %3s %5s %6s %7s %7s %7s %7s %7s %7s %7s %7s %7s %7s %-5s %6s %6s %3s %s\n' \
+  log seed fmt scans conv sc_true sc_est sc_err% fit_err% pair_md gt gp gpgt tps dt auto a/best \
+  time_s rc set
+if [ "$rows" != drawings ]; then
+for log in "${logs[@]}"; do
+  name=$(basename "$log" | sed 's/-corrected.log.gz//; s/freiburg-079/fr079/')
+  for seed in $seeds; do
+    d="$work/$name-$seed"
+    format=png
+    [ "$seed" = 3 ] && format=dxf
+    set_name=held-out
+    [ "$name" = aces ] && [ "$seed" = 1 ] && set_name=tuned
+    "$bin" simulate --from-log "$log" --seed "$seed" --plan-format "$format" --out "$d/dataset" \
+      > "$d.simulate.log" 2>&1 || { echo "$name $seed: simulate failed (see $d.simulate.log)"; continue; }
+    align_and_print "$d" "$name" "$seed" "$format" "$set_name"
   done
 done
+fi
+
+# The real drawings: name, file, what a bare image needs, whether seeds 1-2 are tuned on.
+drawings=(
+  "fr079|fr079/floorplan.png|--resolution 0.05|tuned"
+  "E5|halmstad/E5/layout/E5_layout.png|--resolution 0.05|held-out"
+  "F5|halmstad/F5/layout/F5_layout.png|--resolution 0.05|tuned"
+  "HIH|halmstad/HIH/layout/HIH_layout.png|--resolution 0.05|held-out"
+  "FMap|bonn/Faro/FMap.yaml||held-out"
+  "GMap|bonn/GMap/GMap.yaml||tuned"
+  "YouBot|bonn/2021_10_27/YouBotMap.yaml||held-out"
+  "house|dxf/house_floorplan_r2004.dxf||tuned"
+  "site|dxf/house_site_r2000.dxf||held-out"
+)
+if [ "$rows" != logs ]; then
+[ "$rows" = drawings ] || echo
+for entry in "${drawings[@]}"; do
+  IFS='|' read -r name file args tuned <<< "$entry"
+  [ -f "$data/$file" ] || { echo "$name: $data/$file missing, skipped"; continue; }
+  image=$(basename "$data/$file")
+  format=${image##*.}
+  [ "$format" = yaml ] && format=$(sed -n 's/^image: *//p' "$data/$file" | sed 's/.*\.//')
+  for seed in $seeds; do
+    d="$work/plan-$name-$seed"
+    errors=none
+    [ "$seed" != 1 ] && errors=some
+    set_name=held-out
+    [ "$tuned" = tuned ] && [ "$seed" -le 2 ] && set_name=tuned
+    [ "$errors" = some ] && set_name="$set_name+errors"
+    # shellcheck disable=SC2086  # args holds words
+    "$bin" simulate --from-plan "$data/$file" $args --seed "$seed" --drawing-errors "$errors" \
+      --out "$d/dataset" > "$d.simulate.log" 2>&1 || {
+      echo "$name $seed: simulate failed (see $d.simulate.log)"; continue; }
+    align_and_print "$d" "$name" "$seed" "$format" "$set_name"
+  done
+done
+fi
 echo
 echo "calibration: % of the truth errors within std_m / within 2 std_m @ median std_m (cm);"
 echo "noise: the pairs' own noise the std_m leave out, rms cm (metrics.json pairs.noise_rms_m)"

@@ -15,6 +15,8 @@ enum class SurfaceKind : int {
   rack = 1,       ///< warehouse racks: in the plan (layer RACKS)
   furniture = 2,  ///< clutter: in the world only
   door_leaf = 3,  ///< open door leaves: in the world; the plan draws doors as swing arcs
+  column = 4,     ///< free-standing columns: in the world only (simulate --from-plan)
+  mullion = 5,    ///< posts of a glass wall, the only part the laser sees (--from-plan)
 };
 
 /// A door: an opening in a wall, with the swing the plan draws.

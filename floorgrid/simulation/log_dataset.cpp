@@ -14,6 +14,7 @@
 #include "floorgrid/maps/plan_units.hpp"
 #include "floorgrid/simulation/arc_bend.hpp"
 #include "floorgrid/simulation/manual_pairs.hpp"
+#include "floorgrid/simulation/raster_outline.hpp"
 #include "floorgrid/simulation/slam_map.hpp"
 
 namespace floorgrid {
@@ -208,43 +209,6 @@ cv::Mat render_walls(const cv::Mat& walls, const GridGeometry& geometry, const S
   return raster;
 }
 
-// The outlines of a raster's set regions, simplified to `tolerance` pixels, in pixel units
-// (x, y of pixel centres).
-std::vector<std::vector<cv::Point>> outlines(const cv::Mat& raster, double tolerance) {
-  std::vector<std::vector<cv::Point>> contours;
-  cv::findContours(raster.clone(), contours, cv::RETR_LIST, cv::CHAIN_APPROX_NONE);
-  for (auto& contour : contours) {
-    std::vector<cv::Point> simple;
-    cv::approxPolyDP(contour, simple, tolerance, true);
-    contour = std::move(simple);
-  }
-  return contours;
-}
-
-// The corners of the drawn walls: outline vertices turning by 60-120 degrees between edges of at
-// least 3 pixels, in world metres.
-std::vector<Eigen::Vector2d> drawn_corners(const std::vector<std::vector<cv::Point>>& contours,
-                                           const Eigen::Vector2d& corner, double pixel) {
-  std::vector<Eigen::Vector2d> corners;
-  for (const auto& contour : contours) {
-    const std::size_t n = contour.size();
-    if (n < 3)
-      continue;
-    for (std::size_t i = 0; i < n; ++i) {
-      const cv::Point& p = contour[i];
-      const cv::Point a = contour[(i + n - 1) % n] - p;
-      const cv::Point b = contour[(i + 1) % n] - p;
-      const double la = std::hypot(a.x, a.y), lb = std::hypot(b.x, b.y);
-      if (la < 3.0 || lb < 3.0)
-        continue;
-      const double cosine = (a.x * b.x + a.y * b.y) / (la * lb);
-      if (std::abs(cosine) <= 0.5)
-        corners.push_back(corner + pixel * Eigen::Vector2d(p.x + 0.5, p.y + 0.5));
-    }
-  }
-  return corners;
-}
-
 // A number that tells logs apart: their scan count and first pose.
 std::uint64_t log_fingerprint(const RobotLog& log) {
   const Pose2& p = log.scans.front().robot_pose;
@@ -388,7 +352,7 @@ LogDataset simulate_from_log(const RobotLog& log, const LogDatasetOptions& optio
     const cv::Mat detailed =
         render_walls(walls, d.gridmap.geometry(), warp, corner, fine, width * kVectorOversampling,
                      height * kVectorOversampling);
-    for (const auto& contour : outlines(detailed, kVectorTolerance / fine)) {
+    for (const auto& contour : simplified_outlines(detailed, kVectorTolerance / fine)) {
       for (std::size_t i = 0; i < contour.size() && contour.size() > 1; ++i) {
         const cv::Point& a = contour[i];
         const cv::Point& b = contour[(i + 1) % contour.size()];
@@ -402,9 +366,9 @@ LogDataset simulate_from_log(const RobotLog& log, const LogDatasetOptions& optio
   }
 
   ManualPairsOptions pair_options;
-  d.manual_pairs =
-      emulate_manual_pairs(drawn_corners(outlines(raster, 1.0), corner, o.resolution), d.truth(),
-                           d.plan_per_world, d.gridmap, pair_options, pairs_random);
+  d.manual_pairs = emulate_manual_pairs(
+      outline_corners(simplified_outlines(raster, 1.0), {corner, o.resolution}), d.truth(),
+      d.plan_per_world, d.gridmap, pair_options, pairs_random);
 
   d.start_in_grid = log.scans.front().robot_pose;
   const PoseInverseResult start = warp.pose_grid_to_world(d.start_in_grid);

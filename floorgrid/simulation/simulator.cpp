@@ -6,11 +6,11 @@
 
 #include "floorgrid/core/error.hpp"
 #include "floorgrid/maps/plan_units.hpp"
-#include "floorgrid/robot/motion_model.hpp"
 #include "floorgrid/simulation/arc_bend.hpp"
 #include "floorgrid/simulation/laser_simulator.hpp"
 #include "floorgrid/simulation/manual_pairs.hpp"
 #include "floorgrid/simulation/segment_ray_caster.hpp"
+#include "floorgrid/simulation/simulated_run.hpp"
 #include "floorgrid/simulation/slam_map.hpp"
 
 namespace floorgrid {
@@ -74,41 +74,13 @@ SimulatedDataset simulate(const std::string& preset_name, std::uint64_t seed) {
   d.start_in_plan = {start.x * d.plan_scale, start.y * d.plan_scale, start.theta};
   d.start_in_grid = warp.pose_world_to_grid(start);
 
-  // The run: noisy odometry (starting at the odometry frame's origin) every tick, a scan every
-  // scan_period, both stamped with the noisy odometry as a real robot's log would be.
-  LaserSpec spec;
-  spec.beams = p.beams;
-  spec.start_angle = -p.field_of_view / 2;
-  spec.angle_increment = p.field_of_view / (p.beams - 1);
-  spec.max_range = p.max_range;
-  spec.range_noise_sigma = p.range_noise_sigma;
-  spec.random_reading_fraction = p.random_reading_fraction;
-  spec.laser_in_robot = {p.laser_forward_offset, 0.0, 0.0};
+  // The run: noisy odometry every tick and a scan every scan period, as a robot logs them.
   const SegmentRayCaster caster(b.world_segments());
-  const int scan_every = std::max(1, static_cast<int>(std::lround(p.scan_period / p.tour.tick)));
-  std::vector<SlamMapInput> slam_inputs;
-  LaserScanCounts counts;
-  Pose2 odometry;  // the odometry frame starts at the robot's start
-  for (std::size_t i = 0; i < d.true_trajectory.size(); ++i) {
-    const TimedPose& now = d.true_trajectory[i];
-    double tv = 0.0, rv = 0.0;
-    if (i > 0) {
-      const OdometryMotion truth = odometry_motion(d.true_trajectory[i - 1].pose, now.pose);
-      const OdometryMotion noisy = sample_noisy_motion(truth, p.odometry, odometry_random);
-      const Pose2 before = odometry;
-      odometry = apply_motion(odometry, noisy);
-      tv = noisy.trans / p.tour.tick;
-      rv = normalize_angle(odometry.theta - before.theta) / p.tour.tick;
-    }
-    d.log.odometry.push_back({odometry, tv, rv, 0.0, now.time, 0});
-    if (i % static_cast<std::size_t>(scan_every) != 0)
-      continue;
-    const SimulatedScan scan = simulate_scan(caster, now.pose, spec, laser_random);
-    d.log.scans.push_back(
-        to_laser_scan(scan, odometry.compose(spec.laser_in_robot), odometry, now.time));
-    slam_inputs.push_back(to_slam_map_input(scan));
-    counts += count_beams(scan);
-  }
+  SimulatedRun run = simulate_run(d.true_trajectory, caster, p, odometry_random, laser_random);
+  d.log = std::move(run.log);
+  const std::vector<SlamMapInput>& slam_inputs = run.slam_inputs;
+  const LaserScanCounts& counts = run.counts;
+  const Pose2& odometry = run.final_odometry;
 
   SlamMapOptions map_options;
   map_options.resolution = p.gridmap_resolution;
