@@ -173,6 +173,24 @@ TEST(ModelFiles, AnLcModelOfIdenticalPointsIsRefusedAtOnce) {
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0);
 }
 
+TEST(ModelFiles, APointMappedBeyondThePlausibleRangeGetsNoNumber) {
+  // A sound model can still be asked far out: twice 6e6 m is no coordinate (1e7 m at most), and
+  // was answered as a number flagged outside_hull.
+  Eigen::Matrix2Xd plan(2, 16);
+  for (int i = 0; i < 16; ++i)
+    plan.col(i) << (i % 4) * 3.0, (i / 4) * 2.0;
+  const auto mapping = test::fitted(
+      "gt-affine", test::pairs_through([](const Eigen::Vector2d& p) { return 2.0 * p; }, plan));
+  const MappedPoint near = mapping->map_forward(Eigen::Vector2d(1.0, 1.0));
+  EXPECT_NEAR(near.point.x(), 2.0, 1e-9);
+  const MappedPoint far = mapping->map_forward(Eigen::Vector2d(6e6, 0.0));
+  EXPECT_EQ(far.flag, MapFlag::not_invertible);
+  EXPECT_TRUE(std::isnan(far.point.x()) && std::isnan(far.point.y()));
+  const MappedPoint back = mapping->map_inverse(Eigen::Vector2d(9e6, 0.0));
+  EXPECT_EQ(back.flag, MapFlag::outside_hull);  // 4.5e6 m in the plan: a number
+  EXPECT_NEAR(back.point.x(), 4.5e6, 1e-3);
+}
+
 // ---- options out of range, refused where the file is read (defects 12 and 14) ----
 
 struct BadOption {
