@@ -232,7 +232,8 @@ fs::path write_mcap(const std::string& compression, std::uint64_t bytes) {
 }
 
 using ReadBag = floorgrid::io::BagContents (*)(const fs::path&, const floorgrid::io::BagVisitor&,
-                                               const std::set<std::string>*);
+                                               const std::set<std::string>*,
+                                               const floorgrid::io::BagReadLimits&);
 
 void read_bench(benchmark::State& state, const fs::path& path, ReadBag read) {
   const double file_mb = static_cast<double>(fs::file_size(path)) / (1024.0 * 1024.0);
@@ -245,7 +246,7 @@ void read_bench(benchmark::State& state, const fs::path& path, ReadBag read) {
           ++messages;
           payload += message.data.size();
         },
-        nullptr);
+        nullptr, floorgrid::io::BagReadLimits{});
     benchmark::DoNotOptimize(payload);
   }
   state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations()) *

@@ -43,6 +43,11 @@ inline std::filesystem::path put(const std::string& name, const std::string& tex
   return put(name, reinterpret_cast<const std::uint8_t*>(text.data()), text.size());
 }
 
+/// The bag readers' limits under fuzzing: a chunk may take 64 MiB, as under --memory-limit 0.5
+/// (the default, 256 MiB, would let one input spend seconds decompressing under the
+/// sanitizers). A bomb that states more is refused before anything is allocated.
+inline constexpr std::uint64_t kFuzzChunkBytes = 64ull << 20;
+
 /// Runs `read`; bad input (InputError) is a fine answer.
 template <typename Read>
 void expect_no_crash(const Read& read) {

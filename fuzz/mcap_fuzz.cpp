@@ -5,12 +5,13 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace floorgrid;
   const auto path = fuzz::put("run.mcap", data, size);
-  fuzz::expect_no_crash([&] { io::mcap_contents(path); });
+  const io::BagReadLimits limits{.max_chunk_bytes = fuzz::kFuzzChunkBytes};
+  fuzz::expect_no_crash([&] { io::mcap_contents(path, limits); });
   fuzz::expect_no_crash([&] {
     std::size_t bytes = 0;
     io::read_mcap(
         path, [&](const io::BagTopic&, const io::BagMessageView& m) { bytes += m.data.size(); },
-        nullptr);
+        nullptr, limits);
   });
   return 0;
 }

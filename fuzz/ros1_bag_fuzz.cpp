@@ -5,7 +5,8 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace floorgrid;
   const auto path = fuzz::put("run.bag", data, size);
-  fuzz::expect_no_crash([&] { io::ros1_bag_contents(path); });
+  const io::BagReadLimits limits{.max_chunk_bytes = fuzz::kFuzzChunkBytes};
+  fuzz::expect_no_crash([&] { io::ros1_bag_contents(path, limits); });
   volatile std::size_t bytes = 0;  // keeps the reads of every byte handed out
   fuzz::expect_no_crash([&] {
     io::read_ros1_bag(
@@ -14,7 +15,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
           for (const std::uint8_t b : message.data)
             bytes = bytes + b;
         },
-        nullptr);
+        nullptr, limits);
   });
   return 0;
 }

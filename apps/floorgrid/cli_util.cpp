@@ -14,6 +14,20 @@
 
 namespace floorgrid::app {
 
+CLI::Validator seed_check() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        std::uint64_t seed = 0;
+        const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), seed);
+        if (error == std::errc::result_out_of_range)
+          return "a seed must be at most 2^64 - 1 = 18446744073709551615 (got " + text + ")";
+        if (error != std::errc() || end != text.data() + text.size())
+          return "a seed must be a whole number from 0 to 2^64 - 1 (got " + text + ")";
+        return {};
+      },
+      "SEED");
+}
+
 std::vector<double> parse_numbers(const std::string& text, const std::string& option,
                                   const std::vector<std::size_t>& counts) {
   std::vector<double> values;

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <CLI/CLI.hpp>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -7,6 +8,10 @@
 #include "floorgrid/geometry/pose2.hpp"
 
 namespace floorgrid::app {
+
+/// Checks a `--seed` value before CLI11 converts it: a whole number from 0 to 2^64 - 1 (CLI11
+/// alone reads -1 as 2^64 - 1 and so does not refuse it).
+CLI::Validator seed_check();
 
 /// Parses "a,b,c" into numbers; throws InputError naming `option` when a part is not a finite
 /// number or the count is not one of `counts`.

@@ -96,6 +96,8 @@ void run_align(const std::string& dataset, const std::string& out, const JobOpti
   }
   print_models(a);
   const std::string name = d.manifest.display_name();
+  // From here files are written: the folder says it is incomplete until the last one is.
+  io::IncompleteMarker incomplete(out, "floorgrid align");
   const io::AlignmentFiles files = io::write_alignment(
       a, inputs, name, out, timings, io::floorplan_units_json(d), d.manifest.manifest_path);
   fmt::print("\nwrote {} files to {} (metrics.json, model.json, overlays/)\n", files.files.size(),
@@ -109,10 +111,12 @@ void run_align(const std::string& dataset, const std::string& out, const JobOpti
       require_plan_match(a.plan_match, d, options.align.localization.plan_location);
   } catch (...) {
     write_report(out);
+    incomplete.done();
     throw;
   }
   write_align_exports(a, d, out);
   write_report(out);
+  incomplete.done();
 }
 
 void add_align_command(CLI::App& root) {

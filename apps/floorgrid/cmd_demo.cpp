@@ -1,6 +1,7 @@
 // `floorgrid demo [--out DIR]`: the main job on the built-in default building.
 #include <fmt/format.h>
 
+#include "apps/floorgrid/cli_util.hpp"
 #include "apps/floorgrid/commands.hpp"
 #include "apps/floorgrid/job_options.hpp"
 #include "floorgrid/io/atomic_file.hpp"
@@ -22,7 +23,7 @@ void add_demo_command(CLI::App& root) {
   auto args = std::make_shared<Args>();
   cmd->add_option("--out", args->out, "output folder (created if needed)")->capture_default_str();
   cmd->add_option("--preset", args->preset, "building preset to simulate")->capture_default_str();
-  cmd->add_option("--seed", args->seed, "random seed")->capture_default_str();
+  cmd->add_option("--seed", args->seed, "random seed")->check(seed_check())->capture_default_str();
   cmd->callback([args] {
     simulation_preset(args->preset);  // a bad preset fails before any work
     const std::filesystem::path out(args->out);

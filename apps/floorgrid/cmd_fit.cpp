@@ -121,6 +121,7 @@ void add_fit_command(CLI::App& root) {
                   "GiB a fit may use at most (default: half of this machine's memory)")
       ->capture_default_str();
   cmd->add_option("--seed", args->options.common.seed, "seed of RANSAC and subsampling")
+      ->check(seed_check())
       ->capture_default_str();
   cmd->add_option("--inlier-threshold", args->inlier_threshold,
                   fmt::format("metres: RANSAC inlier distance of the gt models, or "

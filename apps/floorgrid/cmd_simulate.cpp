@@ -51,7 +51,23 @@ void simulate_log_dataset(const Args& a) {
   for (const std::string& warning : log.summary.warnings)
     spdlog::warn("{}: {}", a.from_log, warning);
   spdlog::info("mapping {} scans and drawing the plan (seed {})", log.scans.size(), a.seed);
-  const LogDataset d = simulate_from_log(log, options);
+  const LogDataset d = [&] {
+    try {
+      return simulate_from_log(log, options);
+    } catch (const InputError& e) {
+      if (!e.file().empty())
+        throw;
+      // What the log cannot give is the log's fault: name it, and what its reader skipped.
+      std::size_t skipped = 0;
+      for (const auto& [type, count] : log.summary.messages)
+        skipped += count.skipped_backwards_timestamp + count.skipped_zero_timestamp;
+      const std::string note =
+          skipped > 0 ? " (" + std::to_string(skipped) +
+                            " messages were skipped as out of time order or without a time)"
+                      : "";
+      throw InputError(e.message() + note, a.from_log, 0, e.field());
+    }
+  }();
   const auto files = io::write_log_dataset(d, a.from_log, a.out, a.preview);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -216,6 +232,7 @@ void add_simulate_command(CLI::App& root) {
   auto* preset = cmd->add_option("--preset", args->preset, "building preset: " + presets)
                      ->capture_default_str();
   cmd->add_option("--seed", args->seed, "random seed: the same seed gives the same dataset")
+      ->check(seed_check())
       ->capture_default_str();
   cmd->add_option("--out", args->out, "output folder (created if needed)")->required();
   cmd->add_flag("--preview", args->preview,

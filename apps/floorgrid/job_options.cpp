@@ -1,5 +1,7 @@
 #include "apps/floorgrid/job_options.hpp"
 
+#include "apps/floorgrid/cli_util.hpp"
+
 #include "floorgrid/core/error.hpp"
 #include "floorgrid/geometry/reference_pairs.hpp"
 #include "floorgrid/mapping/model_selection.hpp"
@@ -10,7 +12,8 @@ void add_job_options(CLI::App* cmd, const std::shared_ptr<JobArgs>& args, bool w
   cmd->add_option("--config", args->config,
                   "options file: YAML as `floorgrid config --dump` prints it (keys left out keep "
                   "their defaults)");
-  cmd->add_option("--seed", args->seed, "randomness of the filters and the model fits (default 1)");
+  cmd->add_option("--seed", args->seed, "randomness of the filters and the model fits (default 1)")
+      ->check(seed_check());
   cmd->add_option("--memory-limit", args->memory_gb,
                   "GiB the maps may take (default: half of this machine's memory)");
   if (with_cv) {

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <functional>
 #include <initializer_list>
+#include <limits>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -13,11 +14,58 @@
 
 namespace floorgrid {
 
-/// What `config --dump` says of one option besides its value.
+/// The values a number option may take: from `min` to `max`, each end included unless it is
+/// open. The default is any finite number; an end at infinity that is not open admits infinity.
+struct OptionRange {
+  double min = -std::numeric_limits<double>::infinity();  ///< lower end
+  double max = std::numeric_limits<double>::infinity();   ///< upper end
+  bool min_open = true;                                   ///< `min` itself is outside
+  bool max_open = true;                                   ///< `max` itself is outside
+
+  /// Whether `value` lies in the range (NaN never does).
+  constexpr bool contains(double value) const {
+    return (min_open ? value > min : value >= min) && (max_open ? value < max : value <= max);
+  }
+  /// The rule as a reader states it: "in (0, 1]", "a finite number > 0", "a whole number >= 1"
+  /// (`whole`: of an integer option).
+  std::string text(bool whole = false) const;
+};
+
+/// [min, +inf): at least `min`, finite.
+constexpr OptionRange at_least(double min) {
+  return {.min = min,
+          .max = std::numeric_limits<double>::infinity(),
+          .min_open = false,
+          .max_open = true};
+}
+/// (min, +inf): more than `min`, finite.
+constexpr OptionRange above(double min) {
+  return {.min = min,
+          .max = std::numeric_limits<double>::infinity(),
+          .min_open = true,
+          .max_open = true};
+}
+/// [min, max].
+constexpr OptionRange between(double min, double max) {
+  return {.min = min, .max = max, .min_open = false, .max_open = false};
+}
+/// (min, max].
+constexpr OptionRange above_to(double min, double max) {
+  return {.min = min, .max = max, .min_open = true, .max_open = false};
+}
+/// Any finite number.
+constexpr OptionRange any_number() {
+  return {};
+}
+
+/// What `config --dump` says of one option besides its value, and what a reader accepts.
 struct OptionInfo {
   std::string_view unit;                  ///< "m", "rad", "scans", ... ("" when unitless)
   std::string_view doc;                   ///< one line
   std::vector<std::string_view> choices;  ///< the values a text option may take (empty: any)
+  /// The values a number option may take: an options file's value outside is refused, naming
+  /// the file, the line and the option (unset: any value of the option's type).
+  std::optional<OptionRange> range{};
 };
 
 /// Walks the fields of an options struct, each with its name, unit and a line of
@@ -48,6 +96,14 @@ class OptionVisitor {
   /// A nested options struct: `members` visits its fields with this visitor.
   virtual void group(std::string_view name, std::string_view doc,
                      const std::function<void()>& members) = 0;
+  /// A rule between fields of the group being visited (called after them): when `holds` is
+  /// false, a visitor that reads refuses `field` saying it must be `rule` ("max must be >= min").
+  /// Visitors that print ignore it.
+  virtual void require(bool holds, std::string_view field, std::string_view rule) {
+    (void)holds;
+    (void)field;
+    (void)rule;
+  }
 };
 
 static_assert(std::is_same_v<std::uint64_t, std::size_t>,

@@ -1,13 +1,14 @@
 #include "floorgrid/io/atomic_file.hpp"
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <csignal>
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <cstring>
-#include <sstream>
 #include <utility>
 
 #include "floorgrid/core/error.hpp"
@@ -51,11 +52,40 @@ void unregister_temporary(int slot) {
   g_temporaries[slot].taken.store(false);
 }
 
+// The live IncompleteMarker's open file and what it says when the run is interrupted, for the
+// signal handler (written before the handler may need it; the handler only writes it out).
+std::atomic<int> g_marker_fd{-1};
+char g_marker_interrupted[1024] = {};
+std::atomic<std::size_t> g_marker_interrupted_bytes{0};
+
+/// Rewrites the marker as interrupted by `signal_number`, with calls safe in a signal handler.
+void mark_interrupted(int signal_number) {
+  const int fd = g_marker_fd.load();
+  if (fd < 0)
+    return;
+  if (::lseek(fd, 0, SEEK_SET) != 0 || ::ftruncate(fd, 0) != 0)
+    return;
+  ssize_t ignored = ::write(fd, g_marker_interrupted, g_marker_interrupted_bytes.load());
+  char digits[16];
+  std::size_t n = 0;
+  for (int v = signal_number; v > 0 && n < sizeof digits; v /= 10)
+    digits[n++] = static_cast<char>('0' + v % 10);
+  char text[32] = "signal ";
+  std::size_t length = 7;
+  while (n > 0)
+    text[length++] = digits[--n];
+  text[length++] = '\n';
+  ignored = ::write(fd, text, length);
+  (void)ignored;
+  ::fsync(fd);
+}
+
 extern "C" void remove_temporaries_and_stop(int signal_number) {
   for (TemporarySlot& slot : g_temporaries) {
     if (slot.live.load())
       ::unlink(slot.path);
   }
+  mark_interrupted(signal_number);
   std::signal(signal_number, SIG_DFL);
   std::raise(signal_number);
 }
@@ -112,6 +142,47 @@ void remove_temporaries_on_signals() {
   }
 }
 
+IncompleteMarker::IncompleteMarker(std::filesystem::path folder, const std::string& job)
+    : path_(std::move(folder) / kIncompleteMarker) {
+  const std::string started =
+      job + " (process " + std::to_string(::getpid()) +
+      ") is writing this folder. While this file is here, the folder is not a finished result: "
+      "the run is still going, or it stopped before it finished (the other files may then be "
+      "of this run and of an earlier one). Run it again.\n";
+  const std::string interrupted =
+      job + " (process " + std::to_string(::getpid()) +
+      ") was interrupted while it wrote this folder: the folder is not a finished result (its "
+      "files may be of this run and of an earlier one). Run it again. Stopped by ";
+  fd_ = ::open(path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd_ < 0)
+    throw InputError(std::string("cannot write here: ") + std::strerror(errno), path_.string());
+  if (::write(fd_, started.data(), started.size()) != static_cast<ssize_t>(started.size())) {
+    ::close(fd_);
+    throw InputError("writing failed (disk full?)", path_.string());
+  }
+  const std::size_t bytes = std::min(interrupted.size(), sizeof g_marker_interrupted);
+  std::memcpy(g_marker_interrupted, interrupted.data(), bytes);
+  g_marker_interrupted_bytes.store(bytes);
+  g_marker_fd.store(fd_);
+}
+
+IncompleteMarker::~IncompleteMarker() {
+  if (fd_ >= 0) {
+    g_marker_fd.store(-1);
+    ::close(fd_);
+  }
+}
+
+void IncompleteMarker::done() {
+  if (fd_ < 0)
+    return;
+  g_marker_fd.store(-1);
+  ::close(fd_);
+  fd_ = -1;
+  std::error_code ec;
+  std::filesystem::remove(path_, ec);
+}
+
 void write_file_atomically(const std::filesystem::path& path, const std::string& bytes) {
   AtomicFile file(path);
   file.stream().write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
@@ -138,21 +209,41 @@ OutputFolder::~OutputFolder() {
     std::filesystem::remove(folder_, ec);  // only an empty folder: the job wrote nothing
 }
 
-std::string read_whole_file(const std::filesystem::path& path) {
+std::string read_whole_file(const std::filesystem::path& path, std::uint64_t max_bytes) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec))
     throw InputError("no such file", path.string());
   if (std::filesystem::is_directory(path, ec)) {
     throw InputError("is a folder, not a file", path.string());
   }
+  const auto too_large = [&] {
+    return InputError("holds more than " + std::to_string(max_bytes) +
+                          " bytes, more than a file of this kind may (is it the right file?)",
+                      path.string());
+  };
+  std::uintmax_t size = 0;
+  if (std::filesystem::is_regular_file(path, ec)) {
+    size = std::filesystem::file_size(path, ec);
+    if (!ec && size > max_bytes)
+      throw too_large();
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in)
     throw InputError(std::string("cannot open: ") + std::strerror(errno), path.string());
-  std::ostringstream ss;
-  ss << in.rdbuf();
+  // Read in pieces, counting: a device or pipe has no size to check first.
+  std::string bytes;
+  bytes.reserve(static_cast<std::size_t>(std::min<std::uintmax_t>(size, max_bytes)));
+  std::string piece(1 << 16, '\0');
+  while (in) {
+    in.read(piece.data(), static_cast<std::streamsize>(piece.size()));
+    const auto got = static_cast<std::size_t>(in.gcount());
+    if (bytes.size() + got > max_bytes)
+      throw too_large();
+    bytes.append(piece, 0, got);
+  }
   if (in.bad())
     throw InputError("read error", path.string());
-  return ss.str();
+  return bytes;
 }
 
 }  // namespace floorgrid::io

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -31,9 +32,37 @@ class AtomicFile {
 };
 
 /// Removes every live temporary file of an AtomicFile when the process is told to stop
-/// (SIGINT, SIGTERM, SIGHUP), then stops it as the signal would have: an interrupted run leaves
-/// neither a torn target nor a temporary file behind. Call once, early in main().
+/// (SIGINT, SIGTERM, SIGHUP), rewrites a live IncompleteMarker to say the run was interrupted,
+/// then stops the process as the signal would have: an interrupted run leaves neither a torn
+/// target nor a temporary file behind, and says so where it had written files. Call once,
+/// early in main().
 void remove_temporaries_on_signals();
+
+/// The name of the file that marks an output folder whose writing did not finish.
+inline constexpr const char* kIncompleteMarker = "INCOMPLETE.txt";
+
+/// Marks an output folder while a job writes several files into it: `<folder>/INCOMPLETE.txt`
+/// says the folder is being written (each file is atomic, but together they are one result).
+/// done() removes it. A run stopped by SIGINT, SIGTERM or SIGHUP rewrites it to say it was
+/// interrupted (see remove_temporaries_on_signals); one stopped by an error leaves it. A folder
+/// holding it is not a finished result, whatever else it holds. One marker at a time.
+class IncompleteMarker {
+ public:
+  /// Writes the marker; `job` names the command ("floorgrid align"). Throws InputError when the
+  /// folder is not writable.
+  IncompleteMarker(std::filesystem::path folder, const std::string& job);
+  /// Leaves the marker unless done() was called (the writing did not finish).
+  ~IncompleteMarker();
+  IncompleteMarker(const IncompleteMarker&) = delete;
+  IncompleteMarker& operator=(const IncompleteMarker&) = delete;
+
+  /// The writing finished: removes the marker.
+  void done();
+
+ private:
+  std::filesystem::path path_;
+  int fd_ = -1;
+};
 
 /// Writes `bytes` to `path` atomically.
 void write_file_atomically(const std::filesystem::path& path, const std::string& bytes);
@@ -57,7 +86,17 @@ class OutputFolder {
   bool created_ = false;
 };
 
-/// Reads a whole file as bytes; throws InputError naming the file when it cannot be read.
-std::string read_whole_file(const std::filesystem::path& path);
+/// Bytes a text file of settings may hold at most (a dataset.yaml, map YAML, options file,
+/// rosbag2 metadata.yaml, truth.json): far above any real one.
+inline constexpr std::uint64_t kMaxSettingsFileBytes = 16ull << 20;
+/// Bytes any other file read whole may hold at most (a model file, a pairs or points CSV, a DXF,
+/// a map image): a file beyond is refused before it is read.
+inline constexpr std::uint64_t kMaxInputFileBytes = 1ull << 30;
+
+/// Reads a whole file as bytes; throws InputError naming the file when it cannot be read, or
+/// when it holds more than `max_bytes` (counted while reading, so a device or pipe that never
+/// ends, /dev/zero, is refused after `max_bytes` too).
+std::string read_whole_file(const std::filesystem::path& path,
+                            std::uint64_t max_bytes = kMaxInputFileBytes);
 
 }  // namespace floorgrid::io

@@ -1,11 +1,13 @@
 #include "floorgrid/io/bag_file.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cstring>
 #include <fstream>
 
 #include "floorgrid/core/error.hpp"
 #include "floorgrid/io/rosbag2_folder.hpp"
+#include "floorgrid/io/system_memory.hpp"
 
 namespace floorgrid::io {
 namespace {
@@ -62,27 +64,36 @@ std::optional<BagFormat> detect_bag_format(const std::filesystem::path& path) {
   return std::nullopt;
 }
 
-BagContents bag_contents(const std::filesystem::path& path) {
+BagReadLimits bag_read_limits(double memory_gb) {
+  const double gib = memory_gb > 0.0 ? memory_gb : default_memory_limit_gb();
+  BagReadLimits limits;
+  const double eighth = gib * static_cast<double>(1ull << 30) / 8.0;
+  if (eighth < static_cast<double>(limits.max_chunk_bytes))
+    limits.max_chunk_bytes = static_cast<std::uint64_t>(std::max(eighth, 1.0));
+  return limits;
+}
+
+BagContents bag_contents(const std::filesystem::path& path, const BagReadLimits& limits) {
   switch (require_format(path)) {
     case BagFormat::ros1:
-      return ros1_bag_contents(path);
+      return ros1_bag_contents(path, limits);
     case BagFormat::mcap:
-      return mcap_contents(path);
+      return mcap_contents(path, limits);
     case BagFormat::rosbag2_sqlite:
-      return rosbag2_sqlite_contents(path);
+      return rosbag2_sqlite_contents(path, limits);
   }
   return {};
 }
 
 BagContents read_bag(const std::filesystem::path& path, const BagVisitor& visit,
-                     const std::set<std::string>* topics) {
+                     const std::set<std::string>* topics, const BagReadLimits& limits) {
   switch (require_format(path)) {
     case BagFormat::ros1:
-      return read_ros1_bag(path, visit, topics);
+      return read_ros1_bag(path, visit, topics, limits);
     case BagFormat::mcap:
-      return read_mcap(path, visit, topics);
+      return read_mcap(path, visit, topics, limits);
     case BagFormat::rosbag2_sqlite:
-      return read_rosbag2_sqlite(path, visit, topics);
+      return read_rosbag2_sqlite(path, visit, topics, limits);
   }
   return {};
 }

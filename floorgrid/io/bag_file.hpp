@@ -65,6 +65,22 @@ struct BagContents {
 /// left out).
 void add_topic_totals(BagContents& contents);
 
+/// Bytes one chunk of a bag may hold decompressed, whatever the memory limit: far above the
+/// chunks recorders write (rosbag and rosbag2 close a chunk near 768 KiB; one large message, a
+/// map or a point cloud, makes a chunk of its size), far below a decompression bomb's gigabytes.
+inline constexpr std::uint64_t kMaxChunkBytes = 256ull << 20;
+
+/// What reading a bag may allocate.
+struct BagReadLimits {
+  /// Bytes one chunk may hold decompressed: a chunk stating more is refused, naming its byte
+  /// offset, before anything is allocated or decompressed for it.
+  std::uint64_t max_chunk_bytes = kMaxChunkBytes;
+};
+
+/// The limits of a job that may allocate `memory_gb` GiB (0: half of this machine's memory):
+/// a chunk may take an eighth of it, and never more than kMaxChunkBytes.
+BagReadLimits bag_read_limits(double memory_gb);
+
 /// Called once per message whose topic was asked for, in file order.
 using BagVisitor = std::function<void(const BagTopic& topic, const BagMessageView& message)>;
 
@@ -74,36 +90,40 @@ std::optional<BagFormat> detect_bag_format(const std::filesystem::path& path);
 
 /// The topics and counts of a bag, from its index/summary where it has one (fast), else by
 /// reading it whole. Throws InputError naming the file and the byte offset on a corrupt or
-/// truncated file, saying what was read before it.
-BagContents bag_contents(const std::filesystem::path& path);
+/// truncated file, or a chunk beyond `limits`, saying what was read before it.
+BagContents bag_contents(const std::filesystem::path& path, const BagReadLimits& limits = {});
 
 /// Streams every message on `topics` (all topics when null) to `visit`, reading one chunk at a
 /// time (memory bounded by the largest chunk, never the whole file). Returns the contents
 /// counted while reading. Throws as bag_contents.
 BagContents read_bag(const std::filesystem::path& path, const BagVisitor& visit,
-                     const std::set<std::string>* topics = nullptr);
+                     const std::set<std::string>* topics = nullptr,
+                     const BagReadLimits& limits = {});
 
 // ---- one pair per format (bag_file.cpp dispatches to them) ----
 
 /// ROS 1 bag 2.0: chunks uncompressed, bz2 or lz4; connection, chunk info and index records.
-BagContents ros1_bag_contents(const std::filesystem::path& path);
+BagContents ros1_bag_contents(const std::filesystem::path& path, const BagReadLimits& limits = {});
 /// See read_bag.
 BagContents read_ros1_bag(const std::filesystem::path& path, const BagVisitor& visit,
-                          const std::set<std::string>* topics);
+                          const std::set<std::string>* topics, const BagReadLimits& limits = {});
 
 /// MCAP: chunks uncompressed, lz4 or zstd; the summary section used when present, a file
 /// without one read through. Messages with encoding "cdr" (ROS 2) or "ros1".
-BagContents mcap_contents(const std::filesystem::path& path);
+BagContents mcap_contents(const std::filesystem::path& path, const BagReadLimits& limits = {});
 /// See read_bag.
 BagContents read_mcap(const std::filesystem::path& path, const BagVisitor& visit,
-                      const std::set<std::string>* topics);
+                      const std::set<std::string>* topics, const BagReadLimits& limits = {});
 
 /// rosbag2 sqlite3: a `.db3` (with or without its metadata.yaml), querying only the columns
 /// every rosbag2 version has (topics: id, name, type, serialization_format; messages: id,
 /// topic_id, timestamp, data).
-BagContents rosbag2_sqlite_contents(const std::filesystem::path& path);
+/// `limits.max_chunk_bytes` bounds a row's value (a message's bytes).
+BagContents rosbag2_sqlite_contents(const std::filesystem::path& path,
+                                    const BagReadLimits& limits = {});
 /// See read_bag.
 BagContents read_rosbag2_sqlite(const std::filesystem::path& path, const BagVisitor& visit,
-                                const std::set<std::string>* topics);
+                                const std::set<std::string>* topics,
+                                const BagReadLimits& limits = {});
 
 }  // namespace floorgrid::io

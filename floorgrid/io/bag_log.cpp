@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include "floorgrid/core/error.hpp"
+#include "floorgrid/io/bag_message_checks.hpp"
 #include "floorgrid/io/ros_messages.hpp"
 
 namespace floorgrid::io {
@@ -124,25 +125,40 @@ std::optional<Pose2> interpolate(const std::vector<OdometrySample>& samples, std
                normalize_angle(a.pose.theta + f * normalize_angle(b.pose.theta - a.pose.theta))};
 }
 
-/// The transform tree's parent links: child -> (parent, child in parent), first seen kept
-/// (mounts do not move; the odometry link is excluded by the caller).
-using TransformTree = std::map<std::string, std::pair<std::string, Eigen::Isometry3d>>;
+/// One transform read from a TF topic, with where it came from.
+struct StampedTransform {
+  RosTransform transform;
+  bool is_static = false;  ///< from a static topic
+  MessagePlace place;      ///< its message
+  std::string field;       ///< "transforms[i]" in its message
+};
 
-/// `frame` in `base`, by walking up from `frame`; nullopt when the tree does not reach `base`.
+/// The transform tree's parent links: child -> the transform to its parent, first seen kept
+/// (mounts do not move; the odometry link is excluded by the caller).
+using TransformTree = std::map<std::string, const StampedTransform*>;
+
+/// `frame` in `base`, by walking up from `frame` (every link's values checked as it is used);
+/// nullopt when the tree does not reach `base`. A chain may be as long as the tree holds links;
+/// one that comes back to a frame it passed loops, and is refused.
 std::optional<Eigen::Isometry3d> frame_in(const TransformTree& tree, const std::string& base,
-                                          const std::string& frame) {
+                                          const std::string& frame, const std::string& file) {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   std::string at = frame;
-  for (std::size_t depth = 0; depth < 64; ++depth) {
+  for (std::size_t depth = 0; depth <= tree.size(); ++depth) {
     if (at == base)
       return T;
     const auto link = tree.find(at);
     if (link == tree.end())
       return std::nullopt;
-    T = link->second.second * T;
-    at = link->second.first;
+    const StampedTransform& t = *link->second;
+    check_transform(t.transform, t.field, t.place);
+    T = isometry(t.transform) * T;
+    at = t.transform.header.frame_id;
   }
-  return std::nullopt;  // a loop
+  throw InputError(fmt::format("the transforms from {} towards {} on /tf_static and /tf loop "
+                               "(frame {} is its own ancestor): the laser's mount is undefined",
+                               frame, base, at),
+                   file);
 }
 
 /// The value a float32 field was most likely set from: the shortest decimal (in units of
@@ -174,7 +190,7 @@ BagLog read_bag_log(const std::filesystem::path& path, const BagLogOptions& opti
   validate_laser_settings(options.laser);
   const std::string file = path.string();
   BagLog log;
-  log.contents = bag_contents(path);
+  log.contents = bag_contents(path, options.limits);
   log.scan_topic = *choose_topic(log.contents, RosMessageKind::laser_scan, options.scan_topic, file,
                                  "log_topics.scan", "sensor_msgs/LaserScan", true);
   const std::optional<std::string> odom_topic =
@@ -193,7 +209,7 @@ BagLog read_bag_log(const std::filesystem::path& path, const BagLogOptions& opti
   };
   std::vector<StampedScan> scans;
   std::vector<RosOdometry> odometry;
-  std::vector<std::pair<RosTransform, bool>> transforms;  // (transform, from a static topic)
+  std::vector<StampedTransform> transforms;
   std::map<std::string, MessageTypeCount> counts;
   read_bag(
       path,
@@ -201,31 +217,37 @@ BagLog read_bag_log(const std::filesystem::path& path, const BagLogOptions& opti
         const PayloadSource source{file, message.offset, topic.topic};
         MessageTypeCount& count = counts[topic.topic];
         ++count.lines;
+        const MessagePlace place{file, topic.topic, count.lines, message.offset};
         // Only the scan topic, the odometry topic and the TF topics were asked for.
         if (topic.topic == log.scan_topic) {
           RosLaserScan s = decode_laser_scan(message.data, topic.encoding, source);
+          check_scan_settings(s, options.laser, place);
           if (s.header.stamp_ns == 0)
             s.header.stamp_ns = message.log_time_ns;
           scans.push_back({std::move(s), count.lines});
         } else if (odom_topic && topic.topic == *odom_topic) {
           RosOdometry o = decode_odometry(message.data, topic.encoding, source);
+          check_odometry(o, place);
           if (o.header.stamp_ns == 0)
             o.header.stamp_ns = message.log_time_ns;
           odometry.push_back(std::move(o));
           ++count.kept;
         } else {
           const bool is_static = topic.topic.find("static") != std::string::npos;
+          std::size_t i = 0;
           for (RosTransform& t : decode_tf_message(message.data, topic.encoding, source)) {
             if (t.header.stamp_ns == 0)
               t.header.stamp_ns = message.log_time_ns;
             t.header.frame_id = strip_slash(t.header.frame_id);
             t.child_frame_id = strip_slash(t.child_frame_id);
-            transforms.emplace_back(std::move(t), is_static);
+            // Checked where used: a NaN transform of a frame the run does not need is harmless.
+            transforms.push_back(
+                {std::move(t), is_static, place, "transforms[" + std::to_string(i++) + "]"});
           }
           ++count.not_data;  // transforms place the laser and may carry odometry: not scans
         }
       },
-      &wanted);
+      &wanted, options.limits);
   // Messages are in file order; scans are used in the order of their stamps.
   std::stable_sort(scans.begin(), scans.end(), [](const StampedScan& a, const StampedScan& b) {
     return a.scan.header.stamp_ns < b.scan.header.stamp_ns;
@@ -261,10 +283,14 @@ BagLog read_bag_log(const std::filesystem::path& path, const BagLogOptions& opti
                          o.linear_velocity.x, o.angular_velocity.z});
   } else {
     log.odometry_source = fmt::format("/tf ({} -> {})", odom_frame, base_frame);
-    for (const auto& [t, is_static] : transforms)
-      if (!is_static && t.header.frame_id == odom_frame && t.child_frame_id == base_frame)
+    for (const StampedTransform& s : transforms) {
+      const RosTransform& t = s.transform;
+      if (!s.is_static && t.header.frame_id == odom_frame && t.child_frame_id == base_frame) {
+        check_transform(t, s.field, s.place);
         samples.push_back({t.header.stamp_ns,
                            Pose2{t.translation.x, t.translation.y, yaw_of(t.rotation)}, 0.0, 0.0});
+      }
+    }
     if (samples.empty())
       throw InputError(fmt::format("the bag has no odometry: no nav_msgs/Odometry topic and no "
                                    "{} -> {} transform on /tf (set log_topics.odom or log_frames)",
@@ -279,12 +305,14 @@ BagLog read_bag_log(const std::filesystem::path& path, const BagLogOptions& opti
 
   // The laser's mount: base -> the scans' frame through the static (and other) transforms.
   TransformTree tree;
-  for (const auto& [t, is_static] : transforms)
+  for (const StampedTransform& s : transforms) {
+    const RosTransform& t = s.transform;
     if (!(t.header.frame_id == odom_frame && t.child_frame_id == base_frame))
-      tree.try_emplace(t.child_frame_id, t.header.frame_id, isometry(t));
+      tree.try_emplace(t.child_frame_id, &s);
+  }
   log.laser_frame = strip_slash(scans.front().scan.header.frame_id);
   Eigen::Isometry3d T_base_laser = Eigen::Isometry3d::Identity();
-  if (const auto found = frame_in(tree, base_frame, log.laser_frame)) {
+  if (const auto found = frame_in(tree, base_frame, log.laser_frame, file)) {
     T_base_laser = *found;
   } else if (log.laser_frame != base_frame) {
     log.summary.warnings.push_back(fmt::format(

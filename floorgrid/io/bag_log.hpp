@@ -23,6 +23,8 @@ struct BagLogOptions {
   std::optional<std::string> odom_frame;
   /// The manifest's `laser:` overrides of each scan's own settings.
   LaserSettings laser;
+  /// What reading the bag may allocate (a chunk's size).
+  BagReadLimits limits;
 };
 
 /// A bag read as a run, and how it was read.
@@ -46,9 +48,14 @@ struct BagLog : RobotLog {
 /// Scans whose stamp lies outside the odometry's time span are skipped with a warning. A stamp
 /// of zero falls back to the time the message was logged.
 ///
+/// Every value used is checked as a CARMEN log's (see bag_message_checks.hpp): a NaN, infinite
+/// or absurd odometry pose, velocity, transform or laser setting is refused naming the topic,
+/// the message and the field, not read as a number.
+///
 /// Throws InputError naming the file (and byte offset, for a corrupt container) when the bag
 /// holds no LaserScan topic, several where none was chosen, a chosen topic that is missing or
-/// of another type, no odometry, a tilted laser, or a message that does not decode.
+/// of another type, no odometry, a tilted laser, transforms from the base to the laser's frame
+/// that loop, a value that is not finite or out of range, or a message that does not decode.
 BagLog read_bag_log(const std::filesystem::path& path, const BagLogOptions& options = {});
 
 }  // namespace floorgrid::io

@@ -169,10 +169,13 @@ PlanUnitDecision decide_units(const OccupancyGrid& gridmap, DxfFloorplan& dxf,
   return decision;
 }
 
-/// The manifest's log (a bag or a CARMEN log, told by content). Warnings of the reading join
-/// `warnings`, prefixed with the file.
-RobotLog read_run(const DatasetManifest& m, std::vector<std::string>& warnings) {
-  ReadRobotLog read = read_robot_log(*m.log, bag_log_options(m));
+/// The manifest's log (a bag or a CARMEN log, told by content), a bag's chunks bounded by the
+/// memory limit. Warnings of the reading join `warnings`, prefixed with the file.
+RobotLog read_run(const DatasetManifest& m, const DatasetLimits& limits,
+                  std::vector<std::string>& warnings) {
+  BagLogOptions options = bag_log_options(m);
+  options.limits = bag_read_limits(limits.memory_gb);
+  ReadRobotLog read = read_robot_log(*m.log, options);
   for (const std::string& warning : read.summary.warnings)
     warnings.push_back(m.log->string() + ": " + warning);
   return read;
@@ -229,7 +232,7 @@ LoadedDataset load_dataset(const std::filesystem::path& path, const PlanRasterOp
   if (!d.plan)
     crop_large_map(d.plan_grid, "floorplan " + m.floorplan.string(), limits, d.warnings);
   if (m.log) {
-    RobotLog log = read_run(m, d.warnings);
+    RobotLog log = read_run(m, limits, d.warnings);
     if (m.odometry_noise) {
       const auto& a = *m.odometry_noise;
       const MotionNoise noise{.alpha1 = a[0], .alpha2 = a[1], .alpha3 = a[2], .alpha4 = a[3]};

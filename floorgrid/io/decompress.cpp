@@ -80,17 +80,27 @@ void decompress_zstd(std::span<const std::uint8_t> in, std::vector<std::uint8_t>
 
 }  // namespace
 
-Compression parse_compression(std::string_view name, std::string_view file, std::uint64_t offset) {
-  if (name.empty() || name == "none")
-    return Compression::none;
-  if (name == "bz2")
-    return Compression::bz2;
-  if (name == "lz4")
-    return Compression::lz4;
-  if (name == "zstd")
-    return Compression::zstd;
+Compression parse_compression(std::string_view name, ChunkContainer container,
+                              std::string_view file, std::uint64_t offset) {
+  if (container == ChunkContainer::ros1) {
+    if (name == "none")
+      return Compression::none;
+    if (name == "bz2")
+      return Compression::bz2;
+    if (name == "lz4")
+      return Compression::lz4;
+  } else {
+    if (name.empty())
+      return Compression::none;
+    if (name == "lz4")
+      return Compression::lz4;
+    if (name == "zstd")
+      return Compression::zstd;
+  }
+  const bool ros1 = container == ChunkContainer::ros1;
   throw InputError("at byte " + std::to_string(offset) + ": unknown compression '" +
-                       std::string(name) + "' (known: none, bz2, lz4, zstd)",
+                       std::string(name) + "' for " + (ros1 ? "a ROS 1 bag" : "an MCAP file") +
+                       (ros1 ? " (known: none, bz2, lz4)" : " (known: '' for none, lz4, zstd)"),
                    std::string(file));
 }
 

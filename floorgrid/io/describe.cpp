@@ -8,7 +8,6 @@
 #include <numbers>
 
 #include "floorgrid/core/error.hpp"
-#include "floorgrid/io/atomic_file.hpp"
 #include "floorgrid/io/bag_log.hpp"
 #include "floorgrid/io/carmen_log.hpp"
 #include "floorgrid/io/dataset_manifest.hpp"
@@ -16,6 +15,7 @@
 #include "floorgrid/io/map_io.hpp"
 #include "floorgrid/io/pairs_csv.hpp"
 #include "floorgrid/io/robot_log_reader.hpp"
+#include "floorgrid/io/yaml_document.hpp"
 
 namespace floorgrid::io {
 
@@ -292,12 +292,7 @@ json describe_dataset(const std::filesystem::path& path) {
 
 /// Whether a YAML file is a map (has `image`) or a dataset (has `floorplan` or `gridmap`).
 FileKind yaml_kind(const std::filesystem::path& path) {
-  YAML::Node node;
-  try {
-    node = YAML::Load(read_whole_file(path));
-  } catch (const YAML::Exception& e) {
-    throw InputError("YAML syntax error: " + e.msg, path.string(), e.mark.line + 1);
-  }
+  const YAML::Node node = load_yaml_file(path);
   if (node.IsMap() && node["image"])
     return FileKind::map_yaml;
   if (node.IsMap() && (node["floorplan"] || node["gridmap"]))

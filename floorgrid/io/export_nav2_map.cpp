@@ -40,12 +40,19 @@ void mark(OccupancyGrid& grid, const Eigen::Matrix2Xd& points_in_grid) {
   }
 }
 
-/// Maps `points_in_plan` in chunks (a bounded batch for models with costly batches).
+/// Maps `points_in_plan` in chunks (a bounded batch for models with costly batches). A model
+/// that puts no wall on the gridmap gives no map: an empty one would pass for a drawing.
 void draw(OccupancyGrid& grid, const PointMapping& model, const Eigen::Matrix2Xd& points_in_plan) {
   constexpr Eigen::Index kChunk = 65536;
   for (Eigen::Index begin = 0; begin < points_in_plan.cols(); begin += kChunk) {
     const Eigen::Index n = std::min(kChunk, points_in_plan.cols() - begin);
     mark(grid, model.forward_batch(points_in_plan.middleCols(begin, n)));
+  }
+  if (grid.counts().occupied == 0) {
+    throw InputError(fmt::format("the {} model maps none of the plan's {} wall points onto the "
+                                 "gridmap: no map is written",
+                                 model.name(), points_in_plan.cols()),
+                     {}, 0, "model");
   }
 }
 

@@ -40,6 +40,12 @@ QgisPoints qgis_points(const PointMapping& model, const ReferencePairs& pairs,
       source = {pixel_line.x(), -pixel_line.y()};
     }
     const Eigen::Vector2d d = mapped.col(i) - grid;
+    if (!d.allFinite() || !source.allFinite()) {
+      throw InputError(fmt::format("the {} model maps pair {} (plan [{}, {}]) to a non-finite "
+                                   "point: no control points are written",
+                                   model.name(), i + 1, plan.x(), plan.y()),
+                       {}, 0, "model");
+    }
     sum_squares += d.squaredNorm();
     text += fmt::format("{},{},{},{},1,{},{},{}\n", grid.x(), grid.y(), source.x(), source.y(),
                         d.x(), d.y(), d.norm());

@@ -63,6 +63,13 @@ ModelSimilarity model_similarity(const PointMapping& model,
       "least-squares similarity of the {} model over {} plan points, rms residual {:.4f} m",
       m.name(), s.points, s.rms_m);
   decompose(s);
+  if (!s.T_grid_plan.allFinite() || !std::isfinite(s.rms_m) || !(s.scale > 0.0)) {
+    throw InputError(fmt::format("the {} model's least-squares similarity is not finite or has "
+                                 "no scale (the model maps the plan to non-finite points): "
+                                 "nothing is written",
+                                 m.name()),
+                     {}, 0, "model");
+  }
   return s;
 }
 

@@ -77,8 +77,8 @@ std::uint64_t largest_uncompressed(Compression compression, std::uint64_t compre
 class DataSectionReader {
  public:
   DataSectionReader(const std::filesystem::path& path, const BagVisitor* visit,
-                    const std::set<std::string>* wanted)
-      : file_(path), visit_(visit), topics_(wanted) {}
+                    const std::set<std::string>* wanted, const BagReadLimits& limits)
+      : file_(path), visit_(visit), limits_(limits), topics_(wanted) {}
 
   BagContents read() {
     try {
@@ -113,15 +113,22 @@ class DataSectionReader {
   void read_chunk(ByteCursor& content, std::uint64_t chunk_offset) {
     const mcap::Chunk chunk = mcap::parse_chunk(content);
     const Compression compression =
-        chunk.compression == "bz2"
-            ? parse_compression("bz2 (not an MCAP compression)", file_.name(), chunk_offset)
-            : parse_compression(chunk.compression, file_.name(), chunk_offset);
+        parse_compression(chunk.compression, ChunkContainer::mcap, file_.name(), chunk_offset);
     if (chunk.uncompressed_size > largest_uncompressed(compression, chunk.records.size()) ||
         (compression == Compression::none && chunk.uncompressed_size != chunk.records.size()))
       throw InputError("at byte " + std::to_string(chunk_offset) + ": chunk says " +
                            std::to_string(chunk.uncompressed_size) + " uncompressed bytes from " +
                            std::to_string(chunk.records.size()) + " bytes of '" +
                            chunk.compression + "' data, which cannot be (corrupt)",
+                       file_.name());
+    // Before anything is allocated for it: a bomb states its size honestly.
+    if (chunk.uncompressed_size > limits_.max_chunk_bytes)
+      throw InputError("at byte " + std::to_string(chunk_offset) + ": a chunk of " +
+                           std::to_string(chunk.uncompressed_size) +
+                           " bytes uncompressed, more than the " +
+                           std::to_string(limits_.max_chunk_bytes) +
+                           " a chunk may take (256 MiB, or an eighth of the memory limit): a "
+                           "decompression bomb, or a file with huge chunks",
                        file_.name());
     std::span<const std::uint8_t> records = chunk.records;
     if (compression != Compression::none) {
@@ -161,9 +168,21 @@ class DataSectionReader {
   // its chunk's.
   void on_record(Opcode opcode, ByteCursor& content, std::uint64_t offset) {
     if (opcode == Opcode::schema) {
-      topics_.add_schema(mcap::parse_schema(content));
+      const mcap::Schema schema = mcap::parse_schema(content);
+      if (!topics_.add_schema(schema))
+        throw InputError("at byte " + std::to_string(offset) + ": schema " +
+                             std::to_string(schema.id) + " is defined again as another type (" +
+                             schema.name + "): which one its channels use would be a guess",
+                         file_.name());
     } else if (opcode == Opcode::channel) {
-      topics_.add_channel(mcap::parse_channel(content));
+      const mcap::Channel channel = mcap::parse_channel(content);
+      if (!topics_.add_channel(channel))
+        throw InputError("at byte " + std::to_string(offset) + ": channel " +
+                             std::to_string(channel.id) + " is defined again as another topic (" +
+                             channel.topic +
+                             "), schema or encoding: which one its messages "
+                             "belong to would be a guess",
+                         file_.name());
     } else if (opcode == Opcode::message) {
       const mcap::Message message = mcap::parse_message(content);
       BagTopic* topic = topics_.count(message.channel_id, message.log_time);
@@ -185,6 +204,7 @@ class DataSectionReader {
 
   BinaryFile file_;
   const BagVisitor* visit_;
+  BagReadLimits limits_;
   mcap::TopicTable topics_;
   std::vector<std::uint8_t> record_;  // reused: the record being read
   std::vector<std::uint8_t> chunk_;   // reused: the chunk decompressed
@@ -270,11 +290,17 @@ std::optional<BagContents> contents_from_summary(BinaryFile& file,
         continue;
       file.read(record.content_offset(), record.length, buffer, "summary record");
       ByteCursor in(buffer, file.name(), record.content_offset());
-      if (op == Opcode::schema)
-        topics.add_schema(mcap::parse_schema(in));
-      else if (op == Opcode::channel)
-        topics.add_channel(mcap::parse_channel(in));
-      else if (op == Opcode::statistics)
+      if (op == Opcode::schema && !topics.add_schema(mcap::parse_schema(in)))
+        throw InputError("at byte " + std::to_string(record.offset) +
+                             ": a schema is defined twice as different types",
+                         file.name());
+      if (op == Opcode::channel && !topics.add_channel(mcap::parse_channel(in)))
+        throw InputError("at byte " + std::to_string(record.offset) +
+                             ": a channel is defined twice as different topics",
+                         file.name());
+      if (op == Opcode::schema || op == Opcode::channel)
+        continue;
+      if (op == Opcode::statistics)
         statistics = mcap::parse_statistics(in);
       else
         chunks.push_back(mcap::parse_chunk_index(in));
@@ -308,7 +334,7 @@ std::optional<BagContents> contents_from_summary(BinaryFile& file,
   }
 }
 
-BagContents mcap_file_contents(const std::filesystem::path& path) {
+BagContents mcap_file_contents(const std::filesystem::path& path, const BagReadLimits& limits) {
   std::vector<std::string> warnings;
   {
     BinaryFile file(path);
@@ -317,26 +343,28 @@ BagContents mcap_file_contents(const std::filesystem::path& path) {
       return *contents;
     }
   }
-  BagContents contents = DataSectionReader(path, nullptr, nullptr).read();
+  BagContents contents = DataSectionReader(path, nullptr, nullptr, limits).read();
   contents.warnings.insert(contents.warnings.begin(), warnings.begin(), warnings.end());
   return contents;
 }
 
 }  // namespace
 
-BagContents mcap_contents(const std::filesystem::path& path) {
+BagContents mcap_contents(const std::filesystem::path& path, const BagReadLimits& limits) {
   return read_bag_files(
       rosbag2_storage_files(path, "mcap", ".mcap"),
-      [](const std::filesystem::path& file, const BagVisitor*) { return mcap_file_contents(file); },
+      [&limits](const std::filesystem::path& file, const BagVisitor*) {
+        return mcap_file_contents(file, limits);
+      },
       nullptr);
 }
 
 BagContents read_mcap(const std::filesystem::path& path, const BagVisitor& visit,
-                      const std::set<std::string>* topics) {
+                      const std::set<std::string>* topics, const BagReadLimits& limits) {
   return read_bag_files(
       rosbag2_storage_files(path, "mcap", ".mcap"),
-      [topics](const std::filesystem::path& file, const BagVisitor* v) {
-        return DataSectionReader(file, v, topics).read();
+      [topics, &limits](const std::filesystem::path& file, const BagVisitor* v) {
+        return DataSectionReader(file, v, topics, limits).read();
       },
       &visit);
 }

@@ -2,18 +2,22 @@
 
 namespace floorgrid::io::mcap {
 
-void TopicTable::add_schema(const Schema& schema) {
-  if (!schema_names_.emplace(schema.id, schema.name).second)
-    return;
+bool TopicTable::add_schema(const Schema& schema) {
+  if (const auto [known, added] = schema_names_.emplace(schema.id, schema.name); !added)
+    return known->second == schema.name;
   // A channel may come before its schema (in the summary of some writers).
   for (std::size_t i = 0; i < topics_.size(); ++i)
     if (schema_ids_[i] == schema.id && topics_[i].type.empty())
       topics_[i].type = schema.name;
+  return true;
 }
 
-void TopicTable::add_channel(const Channel& channel) {
-  if (!index_.emplace(channel.id, topics_.size()).second)
-    return;
+bool TopicTable::add_channel(const Channel& channel) {
+  if (const auto [known, added] = index_.emplace(channel.id, topics_.size()); !added) {
+    const std::size_t i = known->second;
+    return topics_[i].topic == channel.topic && schema_ids_[i] == channel.schema_id &&
+           encodings_[i] == channel.message_encoding;
+  }
   BagTopic topic;
   topic.id = channel.id;
   topic.topic = channel.topic;
@@ -27,6 +31,7 @@ void TopicTable::add_channel(const Channel& channel) {
   schema_ids_.push_back(channel.schema_id);
   encodings_.push_back(channel.message_encoding);
   wanted_.push_back(wanted_topics_ == nullptr || wanted_topics_->count(channel.topic) > 0);
+  return true;
 }
 
 BagTopic* TopicTable::count(std::uint16_t channel_id, std::uint64_t log_time) {

@@ -18,10 +18,13 @@ class TopicTable {
   /// `wanted`: the topics whose messages are visited (all when null).
   explicit TopicTable(const std::set<std::string>* wanted) : wanted_topics_(wanted) {}
 
-  /// Remembers a schema's name (a repeated id keeps the first).
-  void add_schema(const Schema& schema);
-  /// Adds a channel as a topic (a repeated id keeps the first).
-  void add_channel(const Channel& channel);
+  /// Remembers a schema's name. A repeated id is fine when it says the same (writers repeat
+  /// records in chunks and the summary); returns false, keeping the first, when it names
+  /// another type.
+  bool add_schema(const Schema& schema);
+  /// Adds a channel as a topic. A repeated id is fine when it says the same; returns false,
+  /// keeping the first, when it names another topic, schema or encoding.
+  bool add_channel(const Channel& channel);
   /// Counts a message on `channel_id` logged at `log_time`; its topic, or null when no channel
   /// of that id was defined.
   BagTopic* count(std::uint16_t channel_id, std::uint64_t log_time);
@@ -40,7 +43,7 @@ class TopicTable {
   const std::set<std::string>* wanted_topics_;
   std::unordered_map<std::uint16_t, std::string> schema_names_;
   std::vector<BagTopic> topics_;
-  std::vector<std::uint16_t> schema_ids_;                 // per topic
+  std::vector<std::uint16_t> schema_ids_;                 // per topic (0: none)
   std::vector<std::string> encodings_;                    // per topic, as the channel names it
   std::vector<bool> wanted_;                              // per topic
   std::unordered_map<std::uint16_t, std::size_t> index_;  // channel id -> topic

@@ -12,7 +12,8 @@ void write_model(const PointMapping& mapping, const std::filesystem::path& path)
 
 std::unique_ptr<PointMapping> read_model(const std::filesystem::path& path,
                                          const MappingOptions& options) {
-  return load_mapping(parse_json(read_whole_file(path), path.string()), path.string(), options);
+  return load_mapping(parse_json(read_whole_file(path, kMaxModelFileBytes), path.string()),
+                      path.string(), options);
 }
 
 }  // namespace floorgrid::io

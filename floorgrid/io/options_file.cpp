@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "floorgrid/core/error.hpp"
-#include "floorgrid/io/atomic_file.hpp"
+#include "floorgrid/io/yaml_document.hpp"
 
 namespace floorgrid::io {
 
@@ -43,13 +43,15 @@ std::string yaml_text(std::string_view text) {
   return out + "\"";
 }
 
-std::string comment(const OptionInfo& info) {
+std::string comment(const OptionInfo& info, bool whole) {
   std::string text;
   if (!info.unit.empty())
     text += fmt::format("[{}] ", info.unit);
   text += info.doc;
   if (!info.choices.empty())
     text += fmt::format(" (one of: {})", fmt::join(info.choices, ", "));
+  if (info.range)
+    text += fmt::format(" ({})", info.range->text(whole));
   return text;
 }
 
@@ -61,13 +63,13 @@ class YamlPrinter final : public OptionVisitor {
     line(name, yaml_number(value), info);
   }
   void field(std::string_view name, int& value, const OptionInfo& info) override {
-    line(name, std::to_string(value), info);
+    line(name, std::to_string(value), info, true);
   }
   void field(std::string_view name, long& value, const OptionInfo& info) override {
-    line(name, std::to_string(value), info);
+    line(name, std::to_string(value), info, true);
   }
   void field(std::string_view name, std::size_t& value, const OptionInfo& info) override {
-    line(name, std::to_string(value), info);
+    line(name, std::to_string(value), info, true);
   }
   void field(std::string_view name, bool& value, const OptionInfo& info) override {
     line(name, value ? "true" : "false", info);
@@ -96,8 +98,9 @@ class YamlPrinter final : public OptionVisitor {
   }
 
  private:
-  void line(std::string_view name, const std::string& value, const OptionInfo& info) {
-    const std::string note = comment(info);
+  void line(std::string_view name, const std::string& value, const OptionInfo& info,
+            bool whole = false) {
+    const std::string note = comment(info, whole);
     text += fmt::format("{:{}}{}: {}", "", indent_, name, value);
     text += note.empty() ? "\n" : "  # " + note + "\n";
   }
@@ -116,13 +119,13 @@ class JsonPrinter final : public OptionVisitor {
          info);
   }
   void field(std::string_view name, int& value, const OptionInfo& info) override {
-    leaf(name, value, info);
+    leaf(name, value, info, true);
   }
   void field(std::string_view name, long& value, const OptionInfo& info) override {
-    leaf(name, value, info);
+    leaf(name, value, info, true);
   }
   void field(std::string_view name, std::size_t& value, const OptionInfo& info) override {
-    leaf(name, value, info);
+    leaf(name, value, info, true);
   }
   void field(std::string_view name, bool& value, const OptionInfo& info) override {
     leaf(name, value, info);
@@ -149,11 +152,14 @@ class JsonPrinter final : public OptionVisitor {
   }
 
  private:
-  void leaf(std::string_view name, nlohmann::ordered_json value, const OptionInfo& info) {
+  void leaf(std::string_view name, nlohmann::ordered_json value, const OptionInfo& info,
+            bool whole = false) {
     nlohmann::ordered_json entry = {
         {"default", std::move(value)}, {"unit", info.unit}, {"description", info.doc}};
     if (!info.choices.empty())
       entry["choices"] = info.choices;
+    if (info.range)
+      entry["range"] = info.range->text(whole);
     (*current_)[std::string(name)] = std::move(entry);
   }
   nlohmann::ordered_json* current_ = &root;
@@ -167,29 +173,36 @@ class YamlReader final : public OptionVisitor {
     levels_.push_back({root, ""});
   }
 
-  void field(std::string_view name, double& value, const OptionInfo&) override {
+  void field(std::string_view name, double& value, const OptionInfo& info) override {
     if (const auto node = scalar(name, "a number"))
-      value = number(*node, name);
+      value = in_range(number(*node, name), *node, name, info, false);
   }
-  void field(std::string_view name, int& value, const OptionInfo&) override {
+  void field(std::string_view name, int& value, const OptionInfo& info) override {
     if (const auto node = scalar(name, "an integer")) {
       const long long v = integer(*node, name);
       if (v < std::numeric_limits<int>::min() || v > std::numeric_limits<int>::max())
         fail(*node, name, "is out of range for an integer (got " + node->Scalar() + ")");
+      in_range(static_cast<double>(v), *node, name, info, true);
       value = static_cast<int>(v);
     }
   }
-  void field(std::string_view name, long& value, const OptionInfo&) override {
-    if (const auto node = scalar(name, "an integer"))
-      value = static_cast<long>(integer(*node, name));
+  void field(std::string_view name, long& value, const OptionInfo& info) override {
+    if (const auto node = scalar(name, "an integer")) {
+      const long long v = integer(*node, name);
+      in_range(static_cast<double>(v), *node, name, info, true);
+      value = static_cast<long>(v);
+    }
   }
-  void field(std::string_view name, std::size_t& value, const OptionInfo&) override {
+  void field(std::string_view name, std::size_t& value, const OptionInfo& info) override {
     if (const auto node = scalar(name, "a whole number >= 0")) {
       const std::string& text = node->Scalar();
       std::size_t v = 0;
       const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+      if (ec == std::errc::result_out_of_range)
+        fail(*node, name, "must be a whole number below 2^64 (got " + text + ")");
       if (ec != std::errc() || ptr != text.data() + text.size())
         fail(*node, name, "must be a whole number >= 0 (got " + text + ")");
+      in_range(static_cast<double>(v), *node, name, info, true);
       value = v;
     }
   }
@@ -215,7 +228,7 @@ class YamlReader final : public OptionVisitor {
       value = text;
     }
   }
-  void field(std::string_view name, std::optional<double>& value, const OptionInfo&) override {
+  void field(std::string_view name, std::optional<double>& value, const OptionInfo& info) override {
     const YAML::Node node = take(name);
     if (!node.IsDefined())
       return;
@@ -225,7 +238,7 @@ class YamlReader final : public OptionVisitor {
     }
     if (!node.IsScalar())
       fail(node, name, "must be a number or null");
-    value = number(node, name);
+    value = in_range(number(node, name), node, name, info, false);
   }
   void field(std::string_view name, std::vector<std::string>& value, const OptionInfo&) override {
     const YAML::Node node = take(name);
@@ -256,6 +269,15 @@ class YamlReader final : public OptionVisitor {
     members();
     reject_unknown();
     levels_.pop_back();
+  }
+
+  void require(bool holds, std::string_view field, std::string_view rule) override {
+    if (holds)
+      return;
+    // At the field's line when the file gives it, else at its group's.
+    const Level& level = levels_.back();
+    const YAML::Node node = level.node[std::string(field)];
+    fail(node.IsDefined() ? node : level.node, field, "must be " + std::string(rule));
   }
 
   /// Throws for the first key of the current level that no field or group took.
@@ -307,6 +329,15 @@ class YamlReader final : public OptionVisitor {
       fail(node, name, "must be a number (got " + text + ")");
     return v;
   }
+  /// `value` when it lies in the option's range, else InputError at `node`'s line.
+  double in_range(double value, const YAML::Node& node, std::string_view name,
+                  const OptionInfo& info, bool whole) const {
+    // An option without a stated range takes any value of its type (the schema states one for
+    // every option of a job: tests/io/options_schema_test.cpp).
+    if (info.range && !info.range->contains(value))
+      fail(node, name, "must be " + info.range->text(whole) + " (got " + node.Scalar() + ")");
+    return value;
+  }
   long long integer(const YAML::Node& node, std::string_view name) const {
     const std::string& text = node.Scalar();
     long long v = 0;
@@ -341,13 +372,7 @@ std::string options_json(const OptionTree& tree) {
 }
 
 void read_options_yaml(const std::filesystem::path& path, const OptionTree& tree) {
-  const std::string text = read_whole_file(path);
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::Exception& e) {
-    throw InputError("YAML syntax error: " + e.msg, path.string(), e.mark.line + 1);
-  }
+  const YAML::Node root = load_yaml_file(path);
   if (root.IsNull())
     return;  // an empty file changes nothing
   if (!root.IsMap())

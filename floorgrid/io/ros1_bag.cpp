@@ -193,8 +193,8 @@ BagContents with_context(const std::filesystem::path& path, const Read& read) {
 
 }  // namespace
 
-BagContents ros1_bag_contents(const std::filesystem::path& path) {
-  return with_context(path, [](BagFile& file) {
+BagContents ros1_bag_contents(const std::filesystem::path& path, const BagReadLimits& limits) {
+  return with_context(path, [&limits](BagFile& file) {
     std::string why;
     if (file.index_pos() == 0) {
       why = "It has no index (index_pos is 0: a recording that was not closed)";
@@ -205,7 +205,7 @@ BagContents ros1_bag_contents(const std::filesystem::path& path) {
         why = "Its index is broken (" + e.message() + ")";
       }
     }
-    BagContents contents = ros1::scan_bag(file, nullptr, nullptr);
+    BagContents contents = ros1::scan_bag(file, nullptr, nullptr, limits);
     contents.warnings.insert(contents.warnings.begin(),
                              why + ": its chunks were read through instead.");
     return contents;
@@ -213,9 +213,9 @@ BagContents ros1_bag_contents(const std::filesystem::path& path) {
 }
 
 BagContents read_ros1_bag(const std::filesystem::path& path, const BagVisitor& visit,
-                          const std::set<std::string>* topics) {
+                          const std::set<std::string>* topics, const BagReadLimits& limits) {
   return with_context(path, [&](BagFile& file) {
-    BagContents contents = ros1::scan_bag(file, visit ? &visit : nullptr, topics);
+    BagContents contents = ros1::scan_bag(file, visit ? &visit : nullptr, topics, limits);
     if (file.index_pos() == 0)
       contents.warnings.insert(
           contents.warnings.begin(),

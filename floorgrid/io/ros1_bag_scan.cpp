@@ -43,8 +43,9 @@ std::uint64_t bz2_size(std::span<const std::uint8_t> in, std::uint64_t limit) {
 
 class Scan {
  public:
-  Scan(BagFile& file, const BagVisitor* visit, const std::set<std::string>* topics)
-      : file_(file), visit_(visit), topics_(topics) {
+  Scan(BagFile& file, const BagVisitor* visit, const std::set<std::string>* topics,
+       const BagReadLimits& limits)
+      : file_(file), visit_(visit), topics_(topics), limits_(limits) {
     contents_.format = BagFormat::ros1;
     contents_.bytes = file.size();
   }
@@ -89,7 +90,8 @@ class Scan {
           break;
         case Op::connection:
           add_connection(parse_connection(record.header, file_.read_data(data_), file_.name(),
-                                          record.data_offset));
+                                          record.data_offset),
+                         record.offset);
           break;
         case Op::message_data:
           // Not where rosbag puts them, but what an unfinished uncompressed chunk leaves.
@@ -117,12 +119,22 @@ class Scan {
   bool read_chunk(const Record& record, bool unindexed) {
     const std::string compression_name = record.header.text("compression");
     const Compression compression =
-        parse_compression(compression_name, file_.name(), record.offset);
-    if (compression == Compression::zstd)
-      file_.fail(record.offset,
-                 "unknown compression 'zstd' for a ROS 1 bag (known: none, bz2, lz4)");
+        parse_compression(compression_name, ChunkContainer::ros1, file_.name(), record.offset);
     const std::uint32_t size = record.header.u32("size");
     const std::uint64_t chunk_offset = record.offset;
+    // Before anything is read or allocated for it (a lie first: it says more than a bomb).
+    if (compression == Compression::lz4 &&
+        size > static_cast<std::uint64_t>(record.data_len) * kLz4MaxExpansion + 4096)
+      file_.fail(chunk_offset, "an lz4 chunk of " + std::to_string(record.data_len) +
+                                   " bytes claims " + std::to_string(size) +
+                                   " uncompressed bytes, more than lz4 can expand to");
+    const std::uint64_t holds = compression == Compression::none ? record.data_len : size;
+    if (holds > limits_.max_chunk_bytes)
+      file_.fail(chunk_offset, "a " + compression_name + " chunk of " + std::to_string(holds) +
+                                   " bytes uncompressed, more than the " +
+                                   std::to_string(limits_.max_chunk_bytes) +
+                                   " a chunk may take (256 MiB, or an eighth of the memory "
+                                   "limit): a decompression bomb, or a bag with huge chunks");
     const std::uint64_t data_offset = record.data_offset;
     if (record.data_len == 0 && size == 0 && compression != Compression::none && unindexed) {
       // rosbag writes a chunk's sizes when it closes the chunk: these are its placeholders,
@@ -191,7 +203,8 @@ class Scan {
       const std::span<const std::uint8_t> record_data = cursor.bytes(data_len, "a record's data");
       switch (header_.op()) {
         case Op::connection:
-          add_connection(parse_connection(header_, record_data, file_.name(), data_offset));
+          add_connection(parse_connection(header_, record_data, file_.name(), data_offset),
+                         base == 0 ? 0 : record_offset);
           break;
         case Op::message_data:
           read_message(header_, record_data, base == 0 ? 0 : record_offset);
@@ -203,9 +216,18 @@ class Scan {
     }
   }
 
-  void add_connection(Connection connection) {
-    if (index_of_.contains(connection.id))
-      return;  // rosbag writes each connection twice: in its first chunk and in the index
+  // `offset`: the record's, 0 inside a compressed chunk (the error then names the chunk).
+  void add_connection(Connection connection, std::uint64_t offset) {
+    if (const auto known = index_of_.find(connection.id); known != index_of_.end()) {
+      // rosbag writes each connection twice, in its first chunk and in the index: the same.
+      const BagTopic& topic = contents_.topics[known->second];
+      if (topic.topic != connection.topic || topic.type != connection.type)
+        file_.fail(offset, "connection " + std::to_string(connection.id) +
+                               " is declared again as another topic or type (" + connection.topic +
+                               ", " + connection.type +
+                               "): which one its messages belong to would be a guess");
+      return;
+    }
     index_of_.emplace(connection.id, contents_.topics.size());
     wanted_.push_back(topics_ == nullptr || topics_->contains(connection.topic));
     BagTopic topic;
@@ -244,6 +266,7 @@ class Scan {
   BagFile& file_;
   const BagVisitor* visit_;
   const std::set<std::string>* topics_;
+  BagReadLimits limits_;
   BagContents contents_;
   std::unordered_map<std::uint32_t, std::size_t> index_of_;  // connection id -> topics index
   std::vector<bool> wanted_;
@@ -255,8 +278,9 @@ class Scan {
 
 }  // namespace
 
-BagContents scan_bag(BagFile& file, const BagVisitor* visit, const std::set<std::string>* topics) {
-  return Scan(file, visit, topics).run();
+BagContents scan_bag(BagFile& file, const BagVisitor* visit, const std::set<std::string>* topics,
+                     const BagReadLimits& limits) {
+  return Scan(file, visit, topics, limits).run();
 }
 
 }  // namespace floorgrid::io::ros1

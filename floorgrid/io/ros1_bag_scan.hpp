@@ -15,8 +15,10 @@ namespace floorgrid::io::ros1 {
 ///
 /// A bag without index (index_pos 0: a recording that was not closed) that ends inside a record,
 /// or in a compressed chunk that was never finished, is read up to there with a warning. Any
-/// other corrupt or truncated record throws InputError naming the file and byte offset and
+/// other corrupt or truncated record, or a chunk larger than `limits` allow (uncompressed, or
+/// by its stated uncompressed size), throws InputError naming the file and byte offset and
 /// saying what was read before it.
-BagContents scan_bag(BagFile& file, const BagVisitor* visit, const std::set<std::string>* topics);
+BagContents scan_bag(BagFile& file, const BagVisitor* visit, const std::set<std::string>* topics,
+                     const BagReadLimits& limits);
 
 }  // namespace floorgrid::io::ros1

@@ -7,6 +7,7 @@
 #include <system_error>
 
 #include "floorgrid/core/error.hpp"
+#include "floorgrid/io/yaml_document.hpp"
 
 namespace floorgrid::io {
 
@@ -17,7 +18,7 @@ Rosbag2Metadata read_rosbag2_metadata(const std::filesystem::path& folder) {
     throw InputError("a rosbag2 folder needs a metadata.yaml, and it has none", folder.string());
   Rosbag2Metadata metadata;
   try {
-    const YAML::Node root = YAML::LoadFile(file.string());
+    const YAML::Node root = load_yaml_file(file);
     const YAML::Node info = root["rosbag2_bagfile_information"];
     if (!info || !info.IsMap())
       throw InputError("has no rosbag2_bagfile_information map", file.string());
@@ -36,12 +37,23 @@ std::optional<BagFormat> rosbag2_folder_format(const std::filesystem::path& path
   std::error_code ec;
   if (!std::filesystem::is_directory(path, ec))
     return std::nullopt;
-  Rosbag2Metadata metadata;
-  try {
-    metadata = read_rosbag2_metadata(path);
-  } catch (const InputError&) {
+  // A dataset folder may hold a bag beside its dataset.yaml: it is a dataset, not a bag.
+  if (std::filesystem::exists(path / "dataset.yaml", ec))
+    return std::nullopt;
+  if (!std::filesystem::exists(path / "metadata.yaml", ec)) {
+    // Storage files without their metadata: say so, rather than "no dataset.yaml".
+    for (const auto& entry : std::filesystem::directory_iterator(path, ec)) {
+      const std::string extension = entry.path().extension().string();
+      if (extension == ".db3" || extension == ".mcap")
+        throw InputError("holds " + entry.path().filename().string() +
+                             " but no metadata.yaml: a rosbag2 folder needs its metadata.yaml "
+                             "(give the " +
+                             extension + " file itself, or restore the file)",
+                         path.string());
+    }
     return std::nullopt;
   }
+  Rosbag2Metadata metadata = read_rosbag2_metadata(path);
   std::string storage = metadata.storage_identifier;
   if (storage.empty() && !metadata.files.empty()) {
     const std::string extension = metadata.files.front().extension().string();

@@ -22,8 +22,10 @@ Rosbag2Metadata read_rosbag2_metadata(const std::filesystem::path& folder);
 
 /// The storage of a rosbag2 folder: its metadata.yaml's storage_identifier ("sqlite3" ->
 /// rosbag2_sqlite, "mcap" -> mcap) or, when that is missing, its files' extension (.db3, .mcap);
-/// nullopt when `path` is not a folder with a readable metadata.yaml or the storage is another.
-/// This is how detect_bag_format tells a folder.
+/// nullopt when `path` is not a folder with a metadata.yaml, holds a dataset.yaml, or the
+/// storage is another. Throws InputError naming the folder when its metadata.yaml is broken, or
+/// when it holds .db3 or .mcap files but no metadata.yaml (not "no dataset.yaml"). This is how
+/// detect_bag_format tells a folder.
 std::optional<BagFormat> rosbag2_folder_format(const std::filesystem::path& path);
 
 /// The files to read for `path`: `path` itself when it is a file; for a rosbag2 folder, the

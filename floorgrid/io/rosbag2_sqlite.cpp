@@ -3,7 +3,9 @@
 // data). BagMessageView::offset is 0: a row of a database has no byte offset.
 #include <sqlite3.h>
 
+#include <algorithm>
 #include <cctype>
+#include <cstdint>
 #include <map>
 #include <memory>
 
@@ -34,7 +36,7 @@ std::string immutable_uri(const std::string& path) {
 
 class Database {
  public:
-  explicit Database(const std::filesystem::path& path) : name_(path.string()) {
+  Database(const std::filesystem::path& path, const BagReadLimits& limits) : name_(path.string()) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec))
       throw InputError("no such rosbag2 sqlite3 file", name_);
@@ -44,6 +46,9 @@ class Database {
     db_.reset(raw);
     if (status != SQLITE_OK)
       fail("cannot open");
+    // No value read may be larger than a bag's chunk may.
+    sqlite3_limit(db_.get(), SQLITE_LIMIT_LENGTH,
+                  static_cast<int>(std::min<std::uint64_t>(limits.max_chunk_bytes, INT32_MAX)));
   }
 
   const std::string& name() const { return name_; }
@@ -82,8 +87,36 @@ std::string column_text(sqlite3_stmt* statement, int column) {
   return text != nullptr ? reinterpret_cast<const char*>(text) : "";
 }
 
+// Refuses `name` unless it is an ordinary table: a view (a recursive one never ends), a virtual
+// table or a generated column computes what it gives, at a cost the file chooses.
+void require_table(const Database& db, const std::string& name) {
+  const auto query =
+      db.prepare("SELECT type, sql FROM sqlite_master WHERE name = '" + name + "' COLLATE NOCASE");
+  if (!db.step(query.get()))
+    throw InputError("has no " + name + " table (not a rosbag2 sqlite3 file?)", db.name());
+  const std::string type = column_text(query.get(), 0);
+  std::string sql = column_text(query.get(), 1);
+  for (char& c : sql)
+    c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  if (type != "table" || sql.find("VIRTUAL") != std::string::npos)
+    throw InputError("its " + name + " is a " + (type == "table" ? "virtual table" : type) +
+                         ", not a table as rosbag2 writes it: refused (it could compute without "
+                         "end)",
+                     db.name());
+  const auto columns = db.prepare("PRAGMA table_xinfo(" + name + ")");
+  while (db.step(columns.get())) {
+    // hidden: 2 and 3 are generated columns
+    if (sqlite3_column_int(columns.get(), 6) >= 2)
+      throw InputError("its " + name + " table has a generated column (" +
+                           column_text(columns.get(), 1) +
+                           "), which rosbag2 never writes: refused (it computes what it gives)",
+                       db.name());
+  }
+}
+
 // The topics table, in id order, and a warning per serialization floorgrid cannot decode.
 std::vector<BagTopic> read_topics(const Database& db, std::vector<std::string>& warnings) {
+  require_table(db, "topics");
   std::vector<BagTopic> topics;
   const auto query =
       db.prepare("SELECT id, name, type, serialization_format FROM topics ORDER BY id");
@@ -103,6 +136,7 @@ std::vector<BagTopic> read_topics(const Database& db, std::vector<std::string>& 
     }
     topics.push_back(std::move(topic));
   }
+  require_table(db, "messages");  // read next, by the caller
   return topics;
 }
 
@@ -132,8 +166,8 @@ std::map<std::int64_t, std::size_t> index_by_id(const std::vector<BagTopic>& top
                    db.name());
 }
 
-BagContents db3_contents(const std::filesystem::path& path) {
-  const Database db(path);
+BagContents db3_contents(const std::filesystem::path& path, const BagReadLimits& limits) {
+  const Database db(path, limits);
   std::vector<std::string> warnings;
   std::vector<BagTopic> topics = read_topics(db, warnings);
   const auto index = index_by_id(topics);
@@ -153,8 +187,8 @@ BagContents db3_contents(const std::filesystem::path& path) {
 }
 
 BagContents read_db3(const std::filesystem::path& path, const BagVisitor* visit,
-                     const std::set<std::string>* wanted) {
-  const Database db(path);
+                     const std::set<std::string>* wanted, const BagReadLimits& limits) {
+  const Database db(path, limits);
   std::vector<std::string> warnings;
   std::vector<BagTopic> topics = read_topics(db, warnings);
   const auto index = index_by_id(topics);
@@ -192,19 +226,22 @@ BagContents read_db3(const std::filesystem::path& path, const BagVisitor* visit,
 
 }  // namespace
 
-BagContents rosbag2_sqlite_contents(const std::filesystem::path& path) {
+BagContents rosbag2_sqlite_contents(const std::filesystem::path& path,
+                                    const BagReadLimits& limits) {
   return read_bag_files(
       rosbag2_storage_files(path, "sqlite3", ".db3"),
-      [](const std::filesystem::path& file, const BagVisitor*) { return db3_contents(file); },
+      [&limits](const std::filesystem::path& file, const BagVisitor*) {
+        return db3_contents(file, limits);
+      },
       nullptr);
 }
 
 BagContents read_rosbag2_sqlite(const std::filesystem::path& path, const BagVisitor& visit,
-                                const std::set<std::string>* topics) {
+                                const std::set<std::string>* topics, const BagReadLimits& limits) {
   return read_bag_files(
       rosbag2_storage_files(path, "sqlite3", ".db3"),
-      [topics](const std::filesystem::path& file, const BagVisitor* v) {
-        return read_db3(file, v, topics);
+      [topics, &limits](const std::filesystem::path& file, const BagVisitor* v) {
+        return read_db3(file, v, topics, limits);
       },
       &visit);
 }

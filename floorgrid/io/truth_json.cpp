@@ -5,6 +5,7 @@
 
 #include "floorgrid/core/error.hpp"
 #include "floorgrid/io/atomic_file.hpp"
+#include "floorgrid/io/value_json.hpp"
 
 namespace floorgrid::io {
 
@@ -232,12 +233,7 @@ json log_dataset_truth_json(const LogDataset& d, const std::string& source) {
 
 PlanTruth read_plan_truth(const std::filesystem::path& path) {
   const std::string where = path.string();
-  json j;
-  try {
-    j = json::parse(read_whole_file(path));
-  } catch (const json::parse_error& e) {
-    throw InputError(std::string("not valid JSON: ") + e.what(), where);
-  }
+  const json j = parse_json_document(read_whole_file(path), where);
   if (!j.is_object() || j.value("format", "") != kFormat) {
     throw InputError(std::string("not a floorgrid truth file (format must be '") + kFormat + "')",
                      where, 0, "format");

@@ -1,7 +1,9 @@
 #include "floorgrid/io/value_json.hpp"
 
 #include <algorithm>
+#include <set>
 #include <variant>
+#include <vector>
 
 #include "floorgrid/core/error.hpp"
 #include "floorgrid/core/overloaded.hpp"
@@ -42,6 +44,27 @@ std::size_t first_too_deep(const std::string& text, int limit) {
     }
   }
   return std::string::npos;
+}
+
+/// Where the `index`-th (0-based) object key of `text` starts: a string followed by ':'.
+std::size_t key_offset(const std::string& text, std::size_t index) {
+  std::size_t keys = 0;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    if (text[i] != '"')
+      continue;
+    const std::size_t start = i;
+    for (++i; i < text.size() && text[i] != '"'; ++i) {
+      if (text[i] == '\\')
+        ++i;
+    }
+    std::size_t after = i + 1;
+    while (after < text.size() && (text[after] == ' ' || text[after] == '\t' ||
+                                   text[after] == '\n' || text[after] == '\r'))
+      ++after;
+    if (after < text.size() && text[after] == ':' && keys++ == index)
+      return start;
+  }
+  return text.size();
 }
 
 /// The JSON library's message without its "[json.exception.parse_error.101] " tag.
@@ -108,18 +131,41 @@ Value from_json(const nlohmann::json& json) {
   }
 }
 
-Value parse_json(const std::string& text, const std::string& where) {
+nlohmann::json parse_json_document(const std::string& text, const std::string& where) {
   if (const std::size_t at = first_too_deep(text, kMaxJsonDepth); at != std::string::npos) {
     throw InputError("nested deeper than " + std::to_string(kMaxJsonDepth) + " levels", where,
                      line_at(text, at));
   }
+  // The keys of each open object, to refuse one given twice.
+  std::vector<std::set<std::string>> open_objects;
+  std::size_t keys_seen = 0;
+  const auto check_keys = [&](int, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
+    using Event = nlohmann::json::parse_event_t;
+    if (event == Event::object_start) {
+      open_objects.emplace_back();
+    } else if (event == Event::object_end) {
+      open_objects.pop_back();
+    } else if (event == Event::key) {
+      const std::string& key = parsed.get_ref<const std::string&>();
+      if (!open_objects.empty() && !open_objects.back().insert(key).second) {
+        throw InputError("key given twice in one object (which one counts would be a guess)", where,
+                         line_at(text, key_offset(text, keys_seen)), key);
+      }
+      ++keys_seen;
+    }
+    return true;
+  };
   try {
-    return from_json(nlohmann::json::parse(text));
+    return nlohmann::json::parse(text, check_keys);
   } catch (const nlohmann::json::parse_error& e) {
     throw InputError("not valid JSON: " + reason(e), where, line_at(text, e.byte));
   } catch (const nlohmann::json::exception& e) {
     throw InputError("not valid JSON: " + reason(e), where, 0);
   }
+}
+
+Value parse_json(const std::string& text, const std::string& where) {
+  return from_json(parse_json_document(text, where));
 }
 
 std::string dump_json(const Value& value, int indent) {

@@ -17,8 +17,13 @@ nlohmann::json to_json(const Value& value);
 /// A JSON document as a value tree.
 Value from_json(const nlohmann::json& json);
 
-/// Parses JSON text into a value tree; InputError naming `where` and the line for text that is
-/// not JSON, nested deeper than kMaxJsonDepth, or holding a number out of range (1e999).
+/// Parses JSON text strictly; InputError naming `where` and the line for text that is not JSON,
+/// nested deeper than kMaxJsonDepth, holding a number out of range (1e999), or an object with a
+/// key given twice (JSON parsers disagree on which one counts: `"unit"` twice would change the
+/// mapping silently).
+nlohmann::json parse_json_document(const std::string& text, const std::string& where);
+
+/// parse_json_document as a value tree.
 Value parse_json(const std::string& text, const std::string& where);
 
 /// A value tree as JSON text, indented by `indent` spaces per level.

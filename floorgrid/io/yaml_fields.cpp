@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "floorgrid/core/error.hpp"
-#include "floorgrid/io/atomic_file.hpp"
+#include "floorgrid/io/yaml_document.hpp"
 
 namespace floorgrid::io {
 
@@ -29,12 +29,7 @@ std::optional<double> parse_number(const std::string& text) {
 }  // namespace
 
 YamlFields::YamlFields(const std::filesystem::path& path) : path_(path) {
-  const std::string text = read_whole_file(path);
-  try {
-    node_ = YAML::Load(text);
-  } catch (const YAML::Exception& e) {
-    throw InputError("YAML syntax error: " + e.msg, path.string(), e.mark.line + 1);
-  }
+  node_ = load_yaml_file(path);
   if (!node_.IsMap()) {
     throw InputError(node_.IsNull() ? "empty YAML file" : "expected a YAML mapping of keys",
                      path.string(), 1);

@@ -51,6 +51,22 @@ void LinearCombinationMapping::fit_model(const ReferencePairs& pairs, FitSummary
 
 namespace {
 
+/// The index of the first column of `points` equal to an earlier one, or -1.
+Eigen::Index first_repeated_point(const Eigen::Matrix2Xd& points) {
+  std::vector<std::pair<std::pair<double, double>, Eigen::Index>> sorted;
+  sorted.reserve(static_cast<std::size_t>(points.cols()));
+  for (Eigen::Index i = 0; i < points.cols(); ++i)
+    sorted.push_back({{points(0, i), points(1, i)}, i});
+  std::sort(sorted.begin(), sorted.end());
+  Eigen::Index first = -1;
+  for (std::size_t i = 1; i < sorted.size(); ++i) {
+    if (sorted[i].first == sorted[i - 1].first &&
+        (first < 0 || std::max(sorted[i].second, sorted[i - 1].second) < first))
+      first = std::max(sorted[i].second, sorted[i - 1].second);
+  }
+  return first;
+}
+
 // Points per task of a batch: large enough that a task costs far more than handing it out.
 constexpr std::size_t kBatchChunk = 4096;
 
@@ -398,6 +414,15 @@ void LinearCombinationMapping::load_parameters(const Value& j, const std::string
     throw InputError("plan and grid points differ in number or are fewer than 3", where, 0,
                      "parameters");
   }
+  // A fitted model's points are distinct and not on one line (fit merges and refuses those);
+  // a file's that are not would make every triangle search look through all of them in vain.
+  if (const Eigen::Index repeated = first_repeated_point(pairs.points_in_plan); repeated >= 0) {
+    throw InputError("point " + std::to_string(repeated + 1) +
+                         " repeats an earlier one: a fitted lc model holds distinct points",
+                     where, 0, p + "plan");
+  }
+  if (plan_points_collinear(pairs))
+    throw InputError("all points lie on one line: lc needs triangles", where, 0, p + "plan");
   // Files of earlier builds have no cells: their points choose their own triangles, as then.
   const Value* cell = optional_member(j, "cell_m");
   const double cell_m = cell ? number(*cell, where, p + "cell_m", 1e-3, 1e3) : -1.0;

@@ -1,5 +1,6 @@
 #include "floorgrid/mapping/model_file.hpp"
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -235,6 +236,32 @@ ErrorModel error_model_of(const Value& u, const std::string& where) {
   return model;
 }
 
+/// Refuses a model that maps its own support points (the pairs it was fitted on) to numbers no
+/// fit makes: not finite, or beyond kMaxCoordinate, or farther from their grid partners' box
+/// than ten times its size and 100 m. Each field was in range, but together they make no
+/// mapping (kernel weights of 1e300 put a plan point at 1e303 m, every export then NaN).
+void require_plausible(const PointMapping& mapping, const std::string& where) {
+  const ReferencePairs& support = mapping.support();
+  Eigen::AlignedBox2d box;
+  for (Eigen::Index i = 0; i < support.size(); ++i)
+    box.extend(Eigen::Vector2d(support.points_in_grid.col(i)));
+  const double margin = 10.0 * box.diagonal().norm() + 100.0;
+  const Eigen::Matrix2Xd mapped = mapping.forward_batch(support.points_in_plan);
+  for (Eigen::Index i = 0; i < mapped.cols(); ++i) {
+    const Eigen::Vector2d q = mapped.col(i);
+    if (q.allFinite() && q.cwiseAbs().maxCoeff() <= kMaxCoordinate &&
+        box.exteriorDistance(q) <= margin)
+      continue;
+    std::ostringstream message;
+    message << "the model maps its support pair " << i + 1 << " (plan ["
+            << support.points_in_plan(0, i) << ", " << support.points_in_plan(1, i) << "], grid ["
+            << support.points_in_grid(0, i) << ", " << support.points_in_grid(1, i) << "]) to ["
+            << q.x() << ", " << q.y()
+            << "]: not a plausible mapping (its parameters are damaged or edited)";
+    throw InputError(message.str(), where, 0, "parameters");
+  }
+}
+
 }  // namespace
 
 Value PointMapping::to_model_file() const {
@@ -399,6 +426,7 @@ std::unique_ptr<PointMapping> load_mapping(const Value& file, const std::string&
     throw InputError(e.message(), where, 0, "model");
   }
   mapping->from_model_file(file, where);
+  require_plausible(*mapping, where);
   return mapping;
 }
 

@@ -10,6 +10,15 @@
 
 namespace floorgrid {
 
+namespace {
+
+/// A mapped point a model may answer: finite, within kMaxCoordinate of the origin.
+bool plausible(const Eigen::Vector2d& point) {
+  return point.allFinite() && point.cwiseAbs().maxCoeff() <= kMaxCoordinate;
+}
+
+}  // namespace
+
 std::string to_string(MapFlag flag) {
   switch (flag) {
     case MapFlag::uncertain:
@@ -280,8 +289,11 @@ MappedPoint PointMapping::map_forward(const Eigen::Vector2d& p) const {
   if (error_model_)
     m.std_m = error_model_->std_at(p, m.nearest_pair_m);
   m.flag = flag_of(inside_plan_hull(p), m.nearest_pair_m, m.std_m);
-  if (!m.point.allFinite())
+  if (!plausible(m.point)) {
+    // No number rather than an absurd one (a damaged model's 1e303 m).
+    m.point = Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN());
     m.flag = MapFlag::not_invertible;
+  }
   return m;
 }
 
@@ -290,6 +302,11 @@ MappedPoint PointMapping::map_inverse(const Eigen::Vector2d& g) const {
   const InverseMapping inv = inverse(g);
   m.nearest_pair_m = nearest_pair_in_grid(g);
   if (!inv.invertible) {
+    m.point = Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN());
+    m.flag = MapFlag::not_invertible;
+    return m;
+  }
+  if (!plausible(inv.point)) {
     m.point = Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN());
     m.flag = MapFlag::not_invertible;
     return m;

@@ -27,7 +27,8 @@ enum class MapFlag {
   uncertain,       ///< 2 std_m (the 95% bound) above MappingCommonOptions::max_error
   extrapolated,    ///< farther than the extrapolation distance from any pair
   outside_hull,    ///< outside the convex hull of the pairs
-  not_invertible,  ///< the inverse does not exist here (the mapping folds) or did not converge
+  not_invertible,  ///< the inverse does not exist here (the mapping folds) or did not converge,
+                   ///< or the model maps the point beyond kMaxCoordinate (no number is given)
 };
 
 /// The flag's name as written in the `map` CSV.

@@ -6,6 +6,7 @@
 #include <numbers>
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
+#include <sstream>
 
 #include "floorgrid/core/error.hpp"
 #include "floorgrid/core/random.hpp"
@@ -162,7 +163,16 @@ WarpParams choose_warp(const Eigen::Matrix2Xd& walls_in_grid, double theta, doub
   const double length = u.maxCoeff() - u.minCoeff();
   warp.bend.axis_origin = axis * u.minCoeff();
   warp.bend.axis_angle = std::atan2(axis.y(), axis.x());
-  warp.bend.curvature = bend == 0.0 ? 0.0 : curvature_for_deviation(bend, length);
+  try {
+    warp.bend.curvature = bend == 0.0 ? 0.0 : curvature_for_deviation(bend, length);
+  } catch (const InputError& e) {
+    std::ostringstream message;
+    message << "the walls mapped from the log span " << length
+            << " m along their axis: too short to bend by " << bend
+            << " m (give a smaller bend, or a log that covers more of the building; " << e.message()
+            << ")";
+    throw InputError(message.str(), "", 0, "bend");
+  }
   s.bend_deviation = bend_deviation(warp.bend.curvature, length);
   s.max_bend_strain = max_strain(warp.bend.curvature, v.cwiseAbs().maxCoeff());
   return warp;
@@ -263,8 +273,20 @@ void validate_log_dataset_options(const LogDatasetOptions& o) {
 
 LogDataset simulate_from_log(const RobotLog& log, const LogDatasetOptions& options) {
   validate_log_dataset_options(options);
-  if (log.scans.empty())
-    throw InputError("the log has no laser scan to map", "", 0, "log");
+  if (log.scans.size() < 2) {
+    throw InputError("the log holds " + std::to_string(log.scans.size()) +
+                         " laser scan(s) to map: a run needs at least 2",
+                     "", 0, "log");
+  }
+  // Scans without a beam map nothing (an empty map has no walls to draw a plan from).
+  std::size_t readings = 0;
+  for (const LaserScan& scan : log.scans)
+    readings += scan.ranges.size();
+  if (readings == 0) {
+    throw InputError("none of the log's " + std::to_string(log.scans.size()) +
+                         " laser scans holds a beam: nothing to map",
+                     "", 0, "log");
+  }
   LogDataset d;
   d.log = log;
   // A log read in line order (every stamp 0) gets stamps 1, 2, ... s in that order, so that
@@ -305,6 +327,11 @@ LogDataset simulate_from_log(const RobotLog& log, const LogDatasetOptions& optio
   const CellCounts cells = d.gridmap.counts();
   s.occupied_cells = cells.occupied;
   s.free_cells = cells.free;
+  if (cells.occupied == 0)
+    throw InputError(
+        "the log's scans hit no wall (every reading a no-return): no walls to draw "
+        "a plan from",
+        "", 0, "log");
 
   const cv::Mat walls = drawn_walls(d.gridmap, o.min_wall_extent, *o.wall_thickness_px, s);
   const Eigen::Matrix2Xd walls_in_grid = set_cell_centres(walls, d.gridmap.geometry());

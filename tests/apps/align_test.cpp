@@ -47,6 +47,10 @@ TEST(AlignCommand, OfficeGivesAccuratePairsAndModelsAndEveryContractKey) {
   for (const char* key : {"count", "converged_fraction", "error_median_m"})
     EXPECT_TRUE(m["pairs"].contains(key)) << key;
   EXPECT_EQ(m["domain"]["kind"], "warp");
+  // The folder is a finished result: no INCOMPLETE.txt (written while align writes, removed at
+  // the end; an interrupted run rewrites it: HardeningCli.AnInterruptedAlignSaysSoInItsFolder).
+  EXPECT_FALSE(std::filesystem::exists(dir / "out" / "INCOMPLETE.txt"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "out" / "metrics.json"));
   EXPECT_GT(m["domain"]["points"].get<int>(), 1000);
   // Which dataset was aligned (what `serve` of the folder shows).
   EXPECT_TRUE(std::filesystem::equivalent(m["dataset_path"].get<std::string>(),

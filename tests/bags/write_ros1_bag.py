@@ -23,7 +23,11 @@ concatenation.
 Usage: write_ros1_bag.py RECORDS.jsonl OUT.bag [--compression none|bz2|lz4]
                          [--chunk-threshold BYTES] [--no-odom] [--dump]
                          [--mount x,y,yaw[,roll]] [--no-scan] [--extra-scan-topic TOPIC]
-                         [--odom-every N]
+                         [--odom-every N] [--mount-chain N]
+
+With --mount-chain N, /tf_static holds the mount as a chain of N links base_link -> link1 ->
+... -> laser: each link turns by the mount's yaw / N and moves by its translation / N along the
+way turned so far (so the chain ends where the mount is).
 """
 import argparse
 import hashlib
@@ -146,6 +150,8 @@ def main():
     parser.add_argument("--odom-every", type=int, default=1, help="write only every Nth pose "
                         "record's /odom and /tf (the first and last always)")
     parser.add_argument("--extra-scan-topic", help="also write every scan on this topic")
+    parser.add_argument("--mount-chain", type=int, default=1, help="the mount on /tf_static as "
+                        "a chain of this many links")
     parser.add_argument("--dump", action="store_true", help="also write each topic's "
                         "concatenated serialized messages to OUT.<topic>.bin")
     args = parser.parse_args()
@@ -164,9 +170,22 @@ def main():
         rec = Recorder(bag, args.out, args.dump)
         if mount is not None and first_stamp is not None:
             stamp = stamp_of(first_stamp)
-            static = TFMessage(transforms=[transform(stamp, "base_link", "laser", mount["x"],
-                                                     mount["y"], mount["yaw"],
-                                                     mount.get("roll", 0.0))])
+            n = args.mount_chain
+            if n == 1:
+                links = [transform(stamp, "base_link", "laser", mount["x"], mount["y"],
+                                   mount["yaw"], mount.get("roll", 0.0))]
+            else:
+                # A chain whose composition is the mount: link k turns by yaw / n after moving
+                # by (x, y) / n rotated back by the turn so far (roll is not chained).
+                links, yaw = [], mount["yaw"] / n
+                for k in range(n):
+                    parent = "base_link" if k == 0 else f"link{k}"
+                    child = "laser" if k == n - 1 else f"link{k + 1}"
+                    c, s = math.cos(-k * yaw), math.sin(-k * yaw)
+                    dx, dy = mount["x"] / n, mount["y"] / n
+                    links.append(transform(stamp, parent, child, c * dx - s * dy, s * dx + c * dy,
+                                           yaw))
+            static = TFMessage(transforms=links)
             header = {"topic": "/tf_static", "type": TFMessage._type,
                       "md5sum": TFMessage._md5sum, "message_definition": TFMessage._full_text,
                       "callerid": "/write_ros1_bag", "latching": "1"}

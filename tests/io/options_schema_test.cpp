@@ -107,6 +107,86 @@ TEST(OptionsSchema, AFileChangesOnlyWhatItNames) {
             JobOptions{}.align.localization.plan.filter.tracking_particles);
 }
 
+/// Every number option with its range and default, and every rule between options that the
+/// defaults break.
+class RangeAudit final : public OptionVisitor {
+ public:
+  std::vector<std::string> unranged;      ///< number options without a range
+  std::vector<std::string> outside;       ///< defaults outside their range
+  std::vector<std::string> rules_broken;  ///< rules the defaults break
+  std::size_t numbers = 0;                ///< number options seen
+
+  void field(std::string_view name, double& value, const OptionInfo& info) override {
+    number(name, value, info);
+  }
+  void field(std::string_view name, int& value, const OptionInfo& info) override {
+    number(name, value, info);
+  }
+  void field(std::string_view name, long& value, const OptionInfo& info) override {
+    number(name, static_cast<double>(value), info);
+  }
+  void field(std::string_view name, std::size_t& value, const OptionInfo& info) override {
+    number(name, static_cast<double>(value), info);
+  }
+  void field(std::string_view, bool&, const OptionInfo&) override {}
+  void field(std::string_view, std::string&, const OptionInfo&) override {}
+  void field(std::string_view name, std::optional<double>& value, const OptionInfo& info) override {
+    if (value)
+      number(name, *value, info);
+    else if (!info.range)
+      unranged.push_back(path(name));
+  }
+  void field(std::string_view, std::vector<std::string>&, const OptionInfo&) override {}
+  void group(std::string_view name, std::string_view,
+             const std::function<void()>& members) override {
+    prefix_.push_back(std::string(name));
+    members();
+    prefix_.pop_back();
+  }
+  void require(bool holds, std::string_view field, std::string_view rule) override {
+    if (!holds)
+      rules_broken.push_back(path(field) + " " + std::string(rule));
+  }
+
+ private:
+  void number(std::string_view name, double value, const OptionInfo& info) {
+    ++numbers;
+    if (!info.range)
+      unranged.push_back(path(name));
+    else if (!info.range->contains(value))
+      outside.push_back(path(name) + " = " + std::to_string(value) + " not " + info.range->text());
+  }
+  std::string path(std::string_view name) const {
+    std::string p;
+    for (const std::string& part : prefix_)
+      p += part + ".";
+    return p + std::string(name);
+  }
+  std::vector<std::string> prefix_;
+};
+
+TEST(OptionsSchema, EveryNumberOptionStatesARangeHoldingItsDefault) {
+  // An options file is checked where it is read (file, line, option) against these ranges: an
+  // option without one would be trusted, a range without its default refuses the dump.
+  JobOptions options;
+  RangeAudit audit;
+  visit(audit, options);
+  EXPECT_GT(audit.numbers, 250u);
+  EXPECT_TRUE(audit.unranged.empty()) << "no range: " << ::testing::PrintToString(audit.unranged);
+  EXPECT_TRUE(audit.outside.empty()) << ::testing::PrintToString(audit.outside);
+  EXPECT_TRUE(audit.rules_broken.empty()) << ::testing::PrintToString(audit.rules_broken);
+}
+
+TEST(OptionsSchema, TheDumpStatesEachRange) {
+  JobOptions options;
+  const std::string yaml = io::options_yaml(io::job_option_tree(options));
+  EXPECT_NE(yaml.find("resolution: 0.05  # [m] Cell size of a rasterized DXF plan (in [0.001, "
+                      "10])"),
+            std::string::npos);
+  const std::string json = io::options_json(io::job_option_tree(options));
+  EXPECT_NE(json.find("\"range\": \"a whole number in [1, 1000000]\""), std::string::npos);
+}
+
 TEST(OptionsSchema, UnknownOrMisspeltOptionsNameTheirPathAndLine) {
   test::TempDir dir;
   std::ofstream(dir / "config.yaml") << "align:\n  localization:\n    sead: 7\n";

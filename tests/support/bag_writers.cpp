@@ -63,7 +63,7 @@ BagBytes run_writer(const std::string& command, const std::filesystem::path& wor
 
 BagBytes read_all(const std::filesystem::path& path,
                   BagContents (*read)(const std::filesystem::path&, const BagVisitor&,
-                                      const std::set<std::string>*),
+                                      const std::set<std::string>*, const io::BagReadLimits&),
                   BagContents* contents) {
   BagBytes got;
   const BagContents c = read(
@@ -80,7 +80,7 @@ BagBytes read_all(const std::filesystem::path& path,
         t.sizes.push_back(message.data.size());
         t.bytes.append(reinterpret_cast<const char*>(message.data.data()), message.data.size());
       },
-      nullptr);
+      nullptr, io::BagReadLimits{});
   if (contents != nullptr)
     *contents = c;
   return got;

@@ -45,7 +45,7 @@ BagBytes run_writer(const std::string& command, const std::filesystem::path& wor
 /// Reads every message of a bag with `read` (read_mcap or read_rosbag2_sqlite) into BagBytes.
 BagBytes read_all(const std::filesystem::path& path,
                   BagContents (*read)(const std::filesystem::path&, const BagVisitor&,
-                                      const std::set<std::string>*),
+                                      const std::set<std::string>*, const io::BagReadLimits&),
                   BagContents* contents = nullptr);
 /// Expects what was read to be what was written: types, counts, times, sizes, bytes.
 void expect_same(const BagBytes& written, const BagBytes& read);
