@@ -1501,39 +1501,54 @@ void visit(OptionVisitor& v, PairSourceOptions& o) {
   v.field("coverage_radius", o.coverage_radius,
           {.unit = "m",
            .doc = "A gridmap wall point this near a pair's grid point is covered by the pairs",
-           .choices = {}, .range = kNonNegative});
+           .choices = {},
+           .range = kNonNegative});
   v.field("min_coverage", o.min_coverage,
           {.unit = "",
            .doc = "Share of the gridmap's walls the run's pairs must cover",
-           .choices = {}, .range = kShare});
+           .choices = {},
+           .range = kShare});
   v.field("min_pair_scans", o.min_pair_scans,
-          {.unit = "scans", .doc = "Scans the run's pairs must come from...", .choices = {}, .range = kNonNegative});
+          {.unit = "scans",
+           .doc = "Scans the run's pairs must come from...",
+           .choices = {},
+           .range = kNonNegative});
   v.field("min_pair_scan_share", o.min_pair_scan_share,
-          {.unit = "", .doc = "... or this share of the log's scans when fewer", .choices = {}, .range = kShare});
+          {.unit = "",
+           .doc = "... or this share of the log's scans when fewer",
+           .choices = {},
+           .range = kShare});
   v.field("disagreement_sigmas", o.disagreement_sigmas,
           {.unit = "",
            .doc = "The run's pairs agree with the maps' bent map when their median distance "
                   "through it is within this many of their stated uncertainty (the pairs' noise "
                   "and the bent map's scale spread over the pairs' extent)",
-           .choices = {}, .range = kNonNegative});
+           .choices = {},
+           .range = kNonNegative});
   v.field("min_disagreement_tolerance", o.min_disagreement_tolerance,
           {.unit = "m", .doc = "... at least this", .choices = {}, .range = kNonNegative});
   v.field("scale_sigmas", o.scale_sigmas,
           {.unit = "",
            .doc = "... and their scales differ by at most this many of the maps' scale spread",
-           .choices = {}, .range = kNonNegative});
+           .choices = {},
+           .range = kNonNegative});
   v.field("min_scale_tolerance", o.min_scale_tolerance,
-          {.unit = "", .doc = "... or this share of the scale, when more", .choices = {}, .range = kNonNegative});
+          {.unit = "",
+           .doc = "... or this share of the scale, when more",
+           .choices = {},
+           .range = kNonNegative});
   v.field("fill_radius", o.fill_radius,
           {.unit = "m",
            .doc = "When the run's pairs are used and agree with the maps', the maps' pairs "
                   "farther than this from every run pair are added (0: none)",
-           .choices = {}, .range = kNonNegative});
+           .choices = {},
+           .range = kNonNegative});
   v.field("maps_match_margin", o.maps_match_margin,
           {.unit = "",
            .doc = "When they disagree, the maps' pairs are used only when the plan-match check "
                   "scores them higher by more than this",
-           .choices = {}, .range = kScore});
+           .choices = {},
+           .range = kScore});
 }
 
 void visit(OptionVisitor& v, DualLocalizerOptions& o) {

@@ -249,9 +249,13 @@ std::string summary_section(const ReportContext& c) {
       fmt::format("on held-out pairs ({})", html_escape(text_of(json_at(chosen, {"cv_kind"})))));
   const std::string source = pair_source(c);
   const json& maps = json_at(m, {"maps_only"});
+  const json& fallback = json_at(m, {"pairs", "fallback"});
   if (source == "maps") {
     cards += card("Pairs", format_count(json_at(m, {"pairs", "count"})),
-                  "from the maps alone: gridmap walls on the plan's");
+                  fallback.is_string()
+                      ? std::string("from the maps alone: <b>the run's were not used</b> "
+                                    "(<a href=\"#pairs\">why</a>)")
+                      : std::string("from the maps alone: gridmap walls on the plan's"));
   } else {
     cards += card("Pairs", format_count(json_at(m, {"pairs", "count"})),
                   fmt::format("from {} scans{}", format_count(json_at(m, {"pairs", "scans"})),
@@ -405,6 +409,29 @@ std::string wall_slide_paragraph(const json& slide) {
 
 }  // namespace
 
+/// How the run's pairs compared with the maps' alignment, when both were there.
+std::string agreement_paragraph(const json& a) {
+  if (!a.is_object())
+    return {};
+  return fmt::format(
+      "<p>The run's pairs against the maps' bent map: <b>{}</b> (median distance {}, 90% under "
+      "{}, tolerance {}; plan scale {} from the run, {} from the maps, tolerance {}).</p>\n",
+      a.value("agree", false) ? "they agree" : "they disagree",
+      format_metres(json_at(a, {"median_m"})), format_metres(json_at(a, {"p90_m"})),
+      format_metres(json_at(a, {"tolerance_m"})), format_ratio(json_at(a, {"run_scale"})),
+      format_ratio(json_at(a, {"maps_scale"})), format_percent(json_at(a, {"scale_tolerance"})));
+}
+
+/// The maps' pairs among the pairs: those that filled where the run did not reach, or all of
+/// them under --pairs-from both.
+json maps_pairs_added(const ReportContext& c) {
+  const json& filled = json_at(c.metrics(), {"sources", "filled_pairs"});
+  if (filled.is_number() && json_at(c.metrics(), {"sources", "chosen"}) == json("run")) {
+    return filled;
+  }
+  return json_at(c.metrics(), {"maps_only", "pairs"});
+}
+
 std::string pairs_section(const ReportContext& c) {
   const json& pairs = json_at(c.metrics(), {"pairs"});
   const std::string source = pair_source(c);
@@ -420,9 +447,13 @@ std::string pairs_section(const ReportContext& c) {
                 format_count(json_at(pairs, {"count"})), format_count(json_at(pairs, {"scans"})),
                 format_count(json_at(pairs, {"converged_periods"})),
                 source == "both"
-                    ? fmt::format(", and {} from the maps alone",
-                                  format_count(json_at(c.metrics(), {"maps_only", "pairs"})))
+                    ? fmt::format(", and {} from the maps alone", format_count(maps_pairs_added(c)))
                     : "");
+  const json& fallback = json_at(pairs, {"fallback"});
+  if (fallback.is_string()) {
+    body += fmt::format(" <b>The run's pairs were not used:</b> {}.",
+                        html_escape(fallback.get<std::string>()));
+  }
   if (json_at(pairs, {"error_median_m"}).is_number()) {
     body += fmt::format(" Their error against the truth: median {}, mean {}, 95% under {}.",
                         format_metres(json_at(pairs, {"error_median_m"})),
@@ -435,6 +466,7 @@ std::string pairs_section(const ReportContext& c) {
   }
   body += "</p>\n";
   body += wall_slide_paragraph(json_at(pairs, {"wall_slide"}));
+  body += agreement_paragraph(json_at(c.metrics(), {"sources", "agreement"}));
   const json& rejected = json_at(pairs, {"rejected"});
   if (rejected.is_object() && !rejected.empty()) {
     double total = number_or(json_at(pairs, {"count"}), 0.0);

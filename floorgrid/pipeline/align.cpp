@@ -269,7 +269,11 @@ void choose_pair_source(const AlignmentInputs& in, const AlignmentOptions& optio
   }
   a.sources = check_pair_sources(
       run, &*a.maps, in.gridmap, options.sources,
-      [&](const ReferencePairs& pairs) { return plan_match_of(in, options, pairs); });
+      [&](const ReferencePairs& pairs) { return plan_match_of(in, options, pairs); },
+      [&](const PlanMatch& m) {
+        return plan_match_accepted(m, location.min_plan_match,
+                                   location.max_plan_walls_in_free_space);
+      });
   const PairSourceCheck& c = *a.sources;
   if (c.chosen == "maps") {
     use_maps_pairs(a, c.fallback);
@@ -298,14 +302,18 @@ void choose_pair_source(const AlignmentInputs& in, const AlignmentOptions& optio
   // Neither passed. A run that made pairs keeps its plan match for the report; one whose pairs
   // pass that check but cannot vouch for the building fails here, with both reasons.
   a.plan_match = run.match;
+  const std::string maps_failure =
+      c.maps_failure.empty() ? no_alignment_message(*a.maps) : c.maps_failure;
+  if (!c.maps_failure.empty())
+    l.notes.push_back("the maps' pairs are not used: " + c.maps_failure);
   if (l.status.ok && run.match_accepted) {
     l.status = {false,
-                c.run_failure + "; and " + no_alignment_message(*a.maps) +
+                c.run_failure + "; and " + maps_failure +
                     ". Check that the plan and the gridmap show the same floor and that the "
                     "gridmap's resolution is right",
                 "log"};
   } else if (!l.status.ok) {
-    l.status.message += ". The maps alone did not align either: " + no_alignment_message(*a.maps);
+    l.status.message += ". The maps alone did not align either: " + maps_failure;
   }
 }
 

@@ -8,8 +8,6 @@
 #include <numbers>
 #include <set>
 
-#include <Eigen/SVD>
-
 #include "floorgrid/core/statistics.hpp"
 #include "floorgrid/core/validation.hpp"
 #include "floorgrid/geometry/displacement_lattice.hpp"
@@ -172,18 +170,6 @@ Pose2 MapWarp::inverse(const Pose2& pose) const {
   return {g.x(), g.y(), std::atan2(heading.y(), heading.x())};
 }
 
-double MapWarp::local_misfit(const Eigen::Vector2d& g, double radius) const {
-  if (!misfit_points || misfit_points->size() == 0)
-    return 0.0;
-  const std::vector<PointIndex2D::Neighbour> near = misfit_points->within(g, radius);
-  if (near.empty())
-    return 0.0;
-  double sum = 0.0;
-  for (const PointIndex2D::Neighbour& n : near)
-    sum += misfit_m[static_cast<std::size_t>(n.index)];
-  return sum / static_cast<double>(near.size());
-}
-
 WarpScale warp_scale(const MapWarp& warp, const std::vector<Eigen::Vector2d>& points) {
   std::vector<double> scales;
   scales.reserve(points.size());
@@ -215,9 +201,10 @@ WarpScale warp_scale(const MapWarp& warp, const std::vector<Eigen::Vector2d>& po
       cross += (images[i] - p_mean) * dg.transpose();
       spread += dg.squaredNorm();
     }
-    const Eigen::JacobiSVD<Eigen::Matrix2d> svd(cross);
+    // The best proper rotation R maximizes trace(R^T cross); in 2-D its maximum is the length
+    // of (cross00 + cross11, cross10 - cross01).
     const double plan_per_world =
-        (svd.singularValues().sum()) / std::max(spread, 1e-300);  // no reflection: both > 0
+        std::hypot(cross(0, 0) + cross(1, 1), cross(1, 0) - cross(0, 1)) / std::max(spread, 1e-300);
     if (plan_per_world > 0.0 && std::isfinite(plan_per_world))
       s.similarity_scale = 1.0 / plan_per_world;
   }
@@ -294,14 +281,8 @@ MapAlignment align_maps(const OccupancyGrid& gridmap, const OccupancyGrid& plan,
   {
     std::vector<Eigen::Vector2d> at;
     at.reserve(points.size());
-    Eigen::Matrix2Xd where(2, static_cast<Eigen::Index>(points.size()));
-    for (std::size_t i = 0; i < points.size(); ++i) {
-      at.push_back(points[i].point);
-      where.col(static_cast<Eigen::Index>(i)) = points[i].point;
-      a.warp->misfit_m.push_back(field.distance(warp.apply(points[i].point)) /
-                                 warp.similarity.scale);
-    }
-    a.warp->misfit_points = std::make_shared<const PointIndex2D>(where);
+    for (const auto& p : points)
+      at.push_back(p.point);
     a.scale = warp_scale(warp, at);
   }
   a.fit = fit_of(warp);

@@ -3,10 +3,7 @@
 #include <optional>
 #include <string>
 
-#include <memory>
-
 #include "floorgrid/geometry/displacement_lattice.hpp"
-#include "floorgrid/geometry/point_index.hpp"
 #include "floorgrid/geometry/pose2.hpp"
 #include "floorgrid/geometry/reference_pairs.hpp"
 #include "floorgrid/maps/occupancy_grid.hpp"
@@ -67,10 +64,6 @@ struct MapWarp {
   DisplacementLattice lattice{Eigen::AlignedBox2d(Eigen::Vector2d::Zero(), Eigen::Vector2d::Ones()),
                               1.0};
   int stages = 0;  ///< lattice stages fitted (0: the similarity alone)
-  /// Where the bent map does not fit: the gridmap's wall points (gridmap metres) and, for each,
-  /// the world metres from its image to the nearest plan wall (capped), from align_maps.
-  std::shared_ptr<const PointIndex2D> misfit_points;
-  std::vector<double> misfit_m;
 
   /// A gridmap point in the plan: similarity, then the lattice's displacement there.
   Eigen::Vector2d apply(const Eigen::Vector2d& g) const;
@@ -82,10 +75,6 @@ struct MapWarp {
   Pose2 inverse(const Pose2& pose) const;
   /// d apply / d g at `g` (plan metres per world metre), by central differences over 0.1 m.
   Eigen::Matrix2d jacobian(const Eigen::Vector2d& g) const;
-  /// How far the bent map misses the plan's walls near `g` (gridmap metres): the mean misfit
-  /// (world metres) of the gridmap wall points within `radius` of it, 0 with none or without
-  /// misfits recorded. Where the drawing differs from the building, it is large.
-  double local_misfit(const Eigen::Vector2d& g, double radius) const;
 };
 
 /// The warp's scale (world metres per plan metre, as floorplan_scale) over `points` (gridmap

@@ -155,7 +155,9 @@ void compare_with_maps(const RunPairsSummary& run, const MapAlignment& maps,
 
 PairSourceCheck check_pair_sources(const RunPairsSummary& run, const MapAlignment* maps,
                                    const OccupancyGrid& gridmap, const PairSourceOptions& o,
-                                   const std::function<PlanMatch(const ReferencePairs&)>& judge) {
+                                   const std::function<PlanMatch(const ReferencePairs&)>& judge,
+                                   const std::function<bool(const PlanMatch&)>& accepts) {
+  const auto maps_pass = [&](const PlanMatch& m) { return !accepts || accepts(m); };
   PairSourceCheck c;
   judge_run(run, gridmap, o, c);
   c.maps_accepted = maps && maps->accepted && maps->warp;
@@ -169,7 +171,7 @@ PairSourceCheck check_pair_sources(const RunPairsSummary& run, const MapAlignmen
     }
     // They disagree: the plan-match check, the same measure for both, says which to trust.
     c.maps_match = judge(maps->pairs);
-    if (c.maps_match.judged && c.run_match.judged &&
+    if (c.maps_match.judged && c.run_match.judged && maps_pass(c.maps_match) &&
         c.maps_match.score.score > c.run_match.score.score + o.maps_match_margin) {
       c.chosen = "maps";
       c.fallback = fmt::format(
@@ -186,8 +188,16 @@ PairSourceCheck check_pair_sources(const RunPairsSummary& run, const MapAlignmen
   if (c.run_accepted) {
     c.chosen = "run";
   } else if (c.maps_accepted) {
-    c.chosen = "maps";
-    c.fallback = c.run_failure;
+    c.maps_match = judge(maps->pairs);
+    if (maps_pass(c.maps_match)) {
+      c.chosen = "maps";
+      c.fallback = c.run_failure;
+    } else {
+      c.maps_failure = fmt::format(
+          "the plan does not match the gridmap under the maps' pairs either (plan match {:.2f}, "
+          "{:.0f}% of the plan's walls in space the robot saw free)",
+          c.maps_match.score.score, 100.0 * c.maps_match.score.in_free_space);
+    }
   }
   return c;
 }

@@ -64,7 +64,10 @@ struct PairSourceCheck {
   bool run_accepted = false;   ///< localized, plan match accepted, covering enough
   // The maps.
   bool maps_accepted = false;  ///< the maps' alignment was accepted (MapAlignment::accepted)
-  PlanMatch maps_match;        ///< the plan match under the maps' pairs (when both are judged)
+  PlanMatch maps_match;        ///< the plan match under the maps' pairs (when judged)
+  /// Why the maps' pairs did not stand in for a failed run although the maps were accepted
+  /// (their plan match failed the check), "" otherwise.
+  std::string maps_failure;
   // The two against each other (when both were accepted).
   bool compared = false;
   double disagreement_median_m = 0.0;     ///< world metres, over the run's pairs
@@ -110,8 +113,11 @@ ReferencePairs pairs_beyond(const ReferencePairs& maps, const Eigen::Matrix2Xd& 
 /// and chooses: the run's pairs when they pass and agree with the maps (or the maps did not
 /// pass); when they disagree, the source whose pairs the plan-match check scores higher
 /// (`maps_match` computed by `judge_maps`); the maps' pairs when only the maps pass.
+/// The maps' pairs stand in only when their plan match passes `accepts` too (null: any), the
+/// same check the run's passed or failed.
 PairSourceCheck check_pair_sources(const RunPairsSummary& run, const MapAlignment* maps,
                                    const OccupancyGrid& gridmap, const PairSourceOptions& options,
-                                   const std::function<PlanMatch(const ReferencePairs&)>& judge);
+                                   const std::function<PlanMatch(const ReferencePairs&)>& judge,
+                                   const std::function<bool(const PlanMatch&)>& accepts = {});
 
 }  // namespace floorgrid

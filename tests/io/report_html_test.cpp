@@ -261,6 +261,49 @@ TEST(ReportHtml, ARunWithTheMapsPairsAddedShowsBoth) {
   EXPECT_NE(html.find("from " + io::format_count(40) + " scans and the maps"), std::string::npos);
 }
 
+TEST(ReportHtml, ARunFilledByTheMapsCountsOnlyTheFillAndShowsTheAgreement) {
+  TempDir dir;
+  json m = maps_only_metrics(true);
+  m["pairs"] = small_metrics()["pairs"];
+  m["pairs"]["source"] = "both";
+  m["sources"] = {{"chosen", "run"},
+                  {"filled_pairs", 37},
+                  {"agreement",
+                   {{"agree", true},
+                    {"median_m", 0.12},
+                    {"p90_m", 0.4},
+                    {"tolerance_m", 0.5},
+                    {"run_scale", 1.0213},
+                    {"maps_scale", 1.0305},
+                    {"scale_tolerance", 0.02}}}};
+  write_folder(dir.path(), m, true);
+  const std::string html = test::read_file(io::write_report_html(dir.path()));
+  EXPECT_NE(html.find("and " + io::format_count(37) + " from the maps alone"), std::string::npos);
+  EXPECT_NE(html.find("<b>they agree</b>"), std::string::npos);
+  for (const std::string& expected :
+       {io::format_metres(0.12), io::format_metres(0.5), io::format_ratio(json(1.0213)),
+        io::format_ratio(json(1.0305)), io::format_percent(json(0.02))})
+    EXPECT_NE(html.find(expected), std::string::npos) << expected;
+}
+
+TEST(ReportHtml, TheMapsStandingInForAFailedRunSaySoAndWhy) {
+  TempDir dir;
+  json m = maps_only_metrics(true);
+  m["pairs"]["fallback"] = "the run covers 4% of the gridmap walls <20%";
+  write_folder(dir.path(), m, true);
+  const std::string html = test::read_file(io::write_report_html(dir.path()));
+  EXPECT_NE(html.find("<b>the run's were not used</b>"), std::string::npos);
+  EXPECT_NE(html.find("<b>The run's pairs were not used:</b> the run covers 4% of the gridmap "
+                      "walls &lt;20%."),
+            std::string::npos);
+
+  // A maps-only alignment (no run at all) says nothing of the kind.
+  TempDir plain;
+  write_folder(plain.path(), maps_only_metrics(true), true);
+  const std::string clean = test::read_file(io::write_report_html(plain.path()));
+  EXPECT_EQ(clean.find("were not used"), std::string::npos);
+}
+
 TEST(Base64, EncodesRfc4648Vectors) {
   EXPECT_EQ(io::base64_encode(""), "");
   EXPECT_EQ(io::base64_encode("f"), "Zg==");

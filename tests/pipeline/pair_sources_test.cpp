@@ -133,6 +133,15 @@ TEST(PairSources, AFewScansCannotVouchForTheBuilding) {
   const MapAlignment refused = maps_of(0.5, false);
   c = check_pair_sources(run_of(pairs, 2.0, 5), &refused, map, {}, judge_maps_at(0.9));
   EXPECT_EQ(c.chosen, "none");
+  // The maps accepted on their own but failing the plan-match check the run is held to: none,
+  // and why.
+  const auto above_095 = [](const PlanMatch& m) { return m.score.score >= 0.95; };
+  c = check_pair_sources(run_of(pairs, 2.0, 5), &maps, map, {}, judge_maps_at(0.9), above_095);
+  EXPECT_EQ(c.chosen, "none");
+  EXPECT_TRUE(c.fallback.empty());
+  EXPECT_NE(c.maps_failure.find("plan match 0.90"), std::string::npos) << c.maps_failure;
+  c = check_pair_sources(run_of(pairs, 2.0, 5), &maps, map, {}, judge_maps_at(0.96), above_095);
+  EXPECT_EQ(c.chosen, "maps");
 }
 
 TEST(PairSources, PairsCoveringLittleOfTheWallsAreNotEnough) {
