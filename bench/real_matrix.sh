@@ -219,4 +219,61 @@ if levels:
     print(f"  median std_m / median error, 10/25/50/75/90%: {' '.join(f'{x:.2f}' for x in q)}"
           " (1.20 when right)")
 PY
+# The real-drawings issue's bars (with align.models.ideal_pairs: true in the options file: each
+# model's error over its error fitted on ideal pairs, the pipeline's own loss), the tuned and
+# held-out rows apart.
+/usr/bin/python3 - "$work" <<'PY'
+import glob, json, os, statistics, sys
+groups = {}
+for d in sorted(glob.glob(os.path.join(sys.argv[1], "*-[0-9]*"))):
+    metrics, truth = f"{d}/align/metrics.json", f"{d}/dataset/truth.json"
+    if not (os.path.isdir(d) and os.path.exists(truth)):
+        continue
+    name = os.path.basename(d)
+    kind = "drawings" if name.startswith("plan-") else "semi-real"
+    held = not ((name.startswith("plan-") and name.split("-")[1] in ("fr079", "F5", "GMap", "house")
+                 and name.split("-")[-1] in ("1", "2")) or name == "aces-1")
+    m = json.load(open(metrics)) if os.path.exists(metrics) else None
+    groups.setdefault((kind, "held-out" if held else "tuned"), []).append(
+        (name, m, json.load(open(truth))))
+models = ["gt", "gt-affine", "lc", "ct", "gp", "gpgt", "dt", "tps"]
+for (kind, set_name), rows in sorted(groups.items()):
+    print(f"{kind}, {set_name}: each model's mean error over its ideal-pair error; the bars")
+    print(f"{'row':<16} " + " ".join(f"{k:>9}" for k in models) +
+          f" {'conv':>5} {'fit_err%':>8} {'1σ/2σ':>8} {'std/err':>7} {'source':<6}")
+    counts = {"converged >= 90%": 0, "scale within 0.15% of the truth's similarity": 0,
+              "every model within 1.5x of ideal": 0, "chosen 2σ >= 85% and 1σ >= 55%": 0,
+              "chosen median std_m <= 3x median error": 0, "exit 0": 0}
+    for name, m, t in rows:
+        if m is None or not m.get("models"):
+            print(f"{name:<16} (no models)")
+            continue
+        counts["exit 0"] += 1
+        ratios = []
+        for k in models:
+            v = m["models"].get(k, {})
+            ideal = (v.get("ideal") or {}).get("mean_error_m")
+            err = v.get("mean_error_m")
+            ratios.append(None if not ideal or err is None else err / ideal)
+        fit_scale = t["plan"]["plan_scale"] * t["statistics"].get("warp_fit_scale", 1.0)
+        fit_err = 100 * (m["plan_scale"] / fit_scale - 1)
+        chosen = m["models"].get(m.get("chosen_model") or "auto", {})
+        c = chosen.get("calibration") or {}
+        level = (c.get("median_std_m") / chosen["median_error_m"]
+                 if c.get("median_std_m") and chosen.get("median_error_m") else None)
+        conv = m["pairs"].get("converged_fraction") or 0.0
+        counts["converged >= 90%"] += conv >= 0.9
+        counts["scale within 0.15% of the truth's similarity"] += abs(fit_err) <= 0.15
+        counts["every model within 1.5x of ideal"] += all(r is not None and r <= 1.5 for r in ratios)
+        counts["chosen 2σ >= 85% and 1σ >= 55%"] += (c.get("within_2sigma", 0) >= 0.85 and
+                                                    c.get("within_1sigma", 0) >= 0.55)
+        counts["chosen median std_m <= 3x median error"] += level is not None and level <= 3
+        cal = "-" if not c else f"{100 * c['within_1sigma']:.0f}/{100 * c['within_2sigma']:.0f}"
+        print(f"{name:<16} " + " ".join("        -" if r is None else f"{r:9.2f}" for r in ratios) +
+              f" {conv:5.2f} {fit_err:8.2f} {cal:>8} {'-' if level is None else f'{level:.2f}':>7}"
+              f" {m['pairs'].get('source', '-'):<6}")
+    for bar, n in counts.items():
+        print(f"  {bar:<48} {n:>3}/{len(rows)}")
+    print()
+PY
 echo "outputs in $work"

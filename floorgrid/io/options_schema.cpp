@@ -1543,10 +1543,10 @@ void visit(OptionVisitor& v, PairSourceOptions& o) {
                   "farther than this from every run pair are added (0: none)",
            .choices = {},
            .range = kNonNegative});
-  v.field("maps_match_margin", o.maps_match_margin,
+  v.field("run_match_margin", o.run_match_margin,
           {.unit = "",
-           .doc = "When they disagree, the maps' pairs are used only when the plan-match check "
-                  "scores them higher by more than this",
+           .doc = "When they disagree, the run's pairs are kept only when the plan-match check "
+                  "scores them higher than the maps' by more than this (a tie goes to the maps)",
            .choices = {},
            .range = kScore});
 }

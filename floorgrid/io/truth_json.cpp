@@ -52,6 +52,20 @@ Eigen::Vector2d vector2(const json& j, const std::string& key, const std::string
 
 }  // namespace
 
+json laser_json(const SimulationPreset& p) {
+  return {{"beams", p.beams},
+          {"field_of_view", p.field_of_view},
+          {"max_range", p.max_range},
+          {"range_noise_sigma", p.range_noise_sigma},
+          {"random_reading_fraction", p.random_reading_fraction},
+          {"forward_offset", p.laser_forward_offset},
+          {"scan_period", p.scan_period}};
+}
+
+json odometry_alpha_json(const SimulationPreset& p) {
+  return {p.odometry.alpha1, p.odometry.alpha2, p.odometry.alpha3, p.odometry.alpha4};
+}
+
 json warp_json(const WarpParams& warp) {
   json j;
   j["T_grid_world"] = {
@@ -116,16 +130,8 @@ json simulation_truth_json(const SimulatedDataset& d) {
   const SimulationPreset& p = d.preset;
   j["parameters"] = {{"building", p.building},
                      {"gridmap_resolution", p.gridmap_resolution},
-                     {"laser",
-                      {{"beams", p.beams},
-                       {"field_of_view", p.field_of_view},
-                       {"max_range", p.max_range},
-                       {"range_noise_sigma", p.range_noise_sigma},
-                       {"random_reading_fraction", p.random_reading_fraction},
-                       {"forward_offset", p.laser_forward_offset},
-                       {"scan_period", p.scan_period}}},
-                     {"odometry_alpha",
-                      {p.odometry.alpha1, p.odometry.alpha2, p.odometry.alpha3, p.odometry.alpha4}},
+                     {"laser", laser_json(p)},
+                     {"odometry_alpha", odometry_alpha_json(p)},
                      {"bend_deviation", p.bend_deviation},
                      {"max_bend_strain", p.max_bend_strain},
                      {"room_rotation_deg", {p.room_rotation_min_deg, p.room_rotation_max_deg}},

@@ -25,6 +25,10 @@ PlanTruth read_plan_truth(const std::filesystem::path& path);
 
 /// The warp parameters as JSON, and back (`where` names the file for errors).
 nlohmann::json warp_json(const WarpParams& warp);
+/// truth.json's parameters.laser: the simulated laser of `preset`.
+nlohmann::json laser_json(const SimulationPreset& preset);
+/// truth.json's parameters.odometry_alpha: the odometry noise of `preset` (alpha1-4).
+nlohmann::json odometry_alpha_json(const SimulationPreset& preset);
 /// Parses warp_json's output; InputError naming `where` and the field otherwise.
 WarpParams warp_from_json(const nlohmann::json& j, const std::string& where);
 

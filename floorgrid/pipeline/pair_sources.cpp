@@ -31,8 +31,8 @@ void validate(const PairSourceOptions& o, const std::string& prefix) {
                  prefix + "min_scale_tolerance", o.min_scale_tolerance, "in [0, 1)");
   require_option(o.fill_radius >= 0.0 && std::isfinite(o.fill_radius), prefix + "fill_radius",
                  o.fill_radius, ">= 0");
-  require_option(o.maps_match_margin >= 0.0 && std::isfinite(o.maps_match_margin),
-                 prefix + "maps_match_margin", o.maps_match_margin, ">= 0");
+  require_option(o.run_match_margin >= 0.0 && std::isfinite(o.run_match_margin),
+                 prefix + "run_match_margin", o.run_match_margin, ">= 0");
 }
 
 double wall_coverage(const OccupancyGrid& gridmap, const Eigen::Matrix2Xd& points_in_grid,
@@ -172,14 +172,14 @@ PairSourceCheck check_pair_sources(const RunPairsSummary& run, const MapAlignmen
     // They disagree: the plan-match check, the same measure for both, says which to trust.
     c.maps_match = judge(maps->pairs);
     if (c.maps_match.judged && c.run_match.judged && maps_pass(c.maps_match) &&
-        c.maps_match.score.score > c.run_match.score.score + o.maps_match_margin) {
+        c.run_match.score.score <= c.maps_match.score.score + o.run_match_margin) {
       c.chosen = "maps";
       c.fallback = fmt::format(
           "the run's pairs disagree with the maps' alignment ({:.2f} m apart at the median, "
-          "scales {:.4f} and {:.4f}) and the plan-match check prefers the maps' ({:.2f} against "
-          "{:.2f})",
-          c.disagreement_median_m, c.run_scale, c.maps_scale, c.maps_match.score.score,
-          c.run_match.score.score);
+          "scales {:.4f} and {:.4f}) and the plan-match check does not prefer the run's ({:.2f} "
+          "against the maps' {:.2f})",
+          c.disagreement_median_m, c.run_scale, c.maps_scale, c.run_match.score.score,
+          c.maps_match.score.score);
     } else {
       c.chosen = "run";
     }

@@ -14,6 +14,7 @@
 #include "floorgrid/geometry/transform_estimation.hpp"
 #include "floorgrid/maps/plan_units.hpp"
 #include "floorgrid/simulation/arc_bend.hpp"
+#include "floorgrid/simulation/drawing_raster.hpp"
 #include "floorgrid/simulation/manual_pairs.hpp"
 #include "floorgrid/simulation/raster_outline.hpp"
 #include "floorgrid/simulation/slam_map.hpp"
@@ -127,21 +128,6 @@ cv::Mat drawn_walls(const OccupancyGrid& gridmap, double min_extent, int thickne
     cv::bitwise_or(thick, walls, walls);
   }
   return walls;
-}
-
-// Centres of the mask's set cells, in the grid frame.
-Eigen::Matrix2Xd set_cell_centres(const cv::Mat& mask, const GridGeometry& geometry) {
-  const auto n = static_cast<Eigen::Index>(cv::countNonZero(mask));
-  Eigen::Matrix2Xd points(2, n);
-  Eigen::Index k = 0;
-  for (int iy = 0; iy < mask.rows; ++iy) {
-    const auto* row = mask.ptr<std::uint8_t>(iy);
-    for (int ix = 0; ix < mask.cols; ++ix) {
-      if (row[ix] != 0)
-        points.col(k++) = geometry.cell_center(ix, iy);
-    }
-  }
-  return points;
 }
 
 // The warp: the plan's world turned by `theta` about the walls' centre into the grid, its long
@@ -334,7 +320,7 @@ LogDataset simulate_from_log(const RobotLog& log, const LogDatasetOptions& optio
         "", 0, "log");
 
   const cv::Mat walls = drawn_walls(d.gridmap, o.min_wall_extent, *o.wall_thickness_px, s);
-  const Eigen::Matrix2Xd walls_in_grid = set_cell_centres(walls, d.gridmap.geometry());
+  const Eigen::Matrix2Xd walls_in_grid = plan_world::set_pixels(walls, d.gridmap.geometry());
   if (walls_in_grid.cols() < 10) {
     throw InputError("the log maps no walls to draw a plan from (" +
                          std::to_string(walls_in_grid.cols()) + " wall cells)",
