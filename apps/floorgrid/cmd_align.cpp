@@ -77,7 +77,7 @@ void run_align(const std::string& dataset, const std::string& out, const JobOpti
   });
   progress.finish();
   require_localized(a.localization.status, d);
-  print_localization(a.localization, a.pair_errors);
+  print_localization(a.localization, a.pair_errors, a.pairs_from);
   if (a.wall_slide)
     print_wall_slide(*a.wall_slide, static_cast<std::size_t>(a.localization.pairs.size()),
                      a.localized_pair_errors);

@@ -52,7 +52,16 @@ void print_wall_slide(const WallSlide& s, std::size_t pairs,
 }
 
 void print_localization(const DualLocalization& l,
-                        const std::optional<ErrorStatistics>& pair_errors) {
+                        const std::optional<ErrorStatistics>& pair_errors, PairSource from) {
+  std::size_t usable = 0;
+  for (const ScanRecord& r : l.scans)
+    usable += r.pairs > 0;
+  if (from == PairSource::maps && !l.scans.empty()) {
+    fmt::print(
+        "pairs       {} from the maps alone (the run's, from {} of {} scans, were not used: "
+        "see the notes)\n",
+        l.pairs.size(), usable, l.scans.size());
+  }
   if (l.scans.empty()) {  // pairs from the maps alone: their story is in the notes
     fmt::print("pairs       {} from the maps alone\n", l.pairs.size());
     for (const std::string& note : l.notes)
@@ -63,10 +72,11 @@ void print_localization(const DualLocalization& l,
     }
     return;
   }
-  std::size_t usable = 0;
-  for (const ScanRecord& r : l.scans)
-    usable += r.pairs > 0;
-  fmt::print("pairs       {} from {} of {} scans\n", l.pairs.size(), usable, l.scans.size());
+  if (from == PairSource::run)
+    fmt::print("pairs       {} from {} of {} scans\n", l.pairs.size(), usable, l.scans.size());
+  else if (from == PairSource::both)
+    fmt::print("pairs       {} from {} of {} scans and the maps\n", l.pairs.size(), usable,
+               l.scans.size());
   std::string rejected;
   for (const auto& [reason, count] : l.rejections.by_reason()) {
     if (count > 0)

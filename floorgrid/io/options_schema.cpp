@@ -1518,6 +1518,11 @@ void visit(OptionVisitor& v, PairSourceOptions& o) {
            .doc = "... or this share of the log's scans when fewer",
            .choices = {},
            .range = kShare});
+  v.field("min_converged_share", o.min_converged_share,
+          {.unit = "",
+           .doc = "... and both filters converged on at least this share of the scans",
+           .choices = {},
+           .range = kShare});
   v.field("disagreement_sigmas", o.disagreement_sigmas,
           {.unit = "",
            .doc = "The run's pairs agree with the maps' bent map when their median distance "

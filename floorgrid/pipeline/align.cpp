@@ -258,6 +258,7 @@ void choose_pair_source(const AlignmentInputs& in, const AlignmentOptions& optio
                       .noise_m = a.pair_noise ? std::sqrt(a.pair_noise->mean_square_m2) : 0.0,
                       .pair_scans = 0,
                       .scans = l.scans.size(),
+                      .converged_fraction = l.converged_fraction,
                       .match = {},
                       .match_accepted = false};
   for (const ScanRecord& r : l.scans)

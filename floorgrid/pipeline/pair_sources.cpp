@@ -23,6 +23,8 @@ void validate(const PairSourceOptions& o, const std::string& prefix) {
                  o.min_coverage, "in 0..1");
   require_option(o.min_pair_scan_share >= 0.0 && o.min_pair_scan_share <= 1.0,
                  prefix + "min_pair_scan_share", o.min_pair_scan_share, "in 0..1");
+  require_option(o.min_converged_share >= 0.0 && o.min_converged_share <= 1.0,
+                 prefix + "min_converged_share", o.min_converged_share, "in 0..1");
   positive(o.disagreement_sigmas, "disagreement_sigmas");
   require_option(o.min_disagreement_tolerance >= 0.0 && std::isfinite(o.min_disagreement_tolerance),
                  prefix + "min_disagreement_tolerance", o.min_disagreement_tolerance, ">= 0");
@@ -107,6 +109,11 @@ void judge_run(const RunPairsSummary& run, const OccupancyGrid& gridmap, const P
         "the plan does not match the gridmap under the run's pairs (plan match {:.2f}, {:.0f}% "
         "of the plan's walls in space the robot saw free)",
         run.match.score.score, 100.0 * run.match.score.in_free_space);
+  } else if (run.converged_fraction < o.min_converged_share) {
+    c.run_failure = fmt::format(
+        "both filters were converged on {:.0f}% of the scans (at least {:.0f}% needed): the log "
+        "does not fit the gridmap for most of the run (is the gridmap's resolution right?)",
+        100.0 * run.converged_fraction, 100.0 * o.min_converged_share);
   } else if (c.pair_scans < needed_scans) {
     c.run_failure = fmt::format(
         "the run's pairs come from {} of {} scans (at least {} needed): a few scans agree with "

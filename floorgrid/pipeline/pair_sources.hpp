@@ -25,6 +25,10 @@ struct PairSourceOptions {
   /// building).
   std::size_t min_pair_scans = 20;
   double min_pair_scan_share = 0.25;
+  /// ... and both filters must have been converged on at least this share of the scans (from
+  /// the first where both were): a run that localized on the gridmap for a third of its scans
+  /// (a gridmap whose resolution was given wrong) makes pairs only where it happened to fit.
+  double min_converged_share = 0.5;
   /// The run's pairs agree with the maps' bent map when the median distance (world metres)
   /// between a pair's plan point and where the bent map puts its grid point is within their
   /// stated uncertainty: disagreement_sigmas times the root sum of squares of the pairs' noise
@@ -102,6 +106,7 @@ struct RunPairsSummary {
   double noise_m = 0.0;                   ///< the pairs' own noise (pair_noise), rms, world metres
   std::size_t pair_scans = 0;             ///< scans that made pairs
   std::size_t scans = 0;                  ///< scans in the log
+  double converged_fraction = 1.0;        ///< DualLocalization::converged_fraction
   PlanMatch match;                        ///< the plan match under the pairs
   bool match_accepted = false;            ///< it passed the plan-match check
 };

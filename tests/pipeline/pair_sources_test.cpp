@@ -144,6 +144,24 @@ TEST(PairSources, AFewScansCannotVouchForTheBuilding) {
   EXPECT_EQ(c.chosen, "maps");
 }
 
+TEST(PairSources, ARunThatFitsTheGridmapForAThirdOfItsScansCannotVouch) {
+  // As with a gridmap whose resolution was given wrong: the filters converge where it happens
+  // to fit, and the pairs from there cover the walls and agree with the maps.
+  const OccupancyGrid map = box_map();
+  const ReferencePairs pairs = wall_pairs(0.0, 20.0, 0.5);
+  const MapAlignment maps = maps_of(0.5);
+  RunPairsSummary run = run_of(pairs, 2.0, 500);
+  run.converged_fraction = 0.37;
+  PairSourceCheck c = check_pair_sources(run, &maps, map, {}, judge_maps_at(0.9));
+  EXPECT_FALSE(c.run_accepted);
+  EXPECT_NE(c.run_failure.find("converged on 37% of the scans"), std::string::npos)
+      << c.run_failure;
+  EXPECT_EQ(c.chosen, "maps");
+  run.converged_fraction = 0.5;
+  c = check_pair_sources(run, &maps, map, {}, judge_maps_at(0.9));
+  EXPECT_TRUE(c.run_accepted);
+}
+
 TEST(PairSources, PairsCoveringLittleOfTheWallsAreNotEnough) {
   const OccupancyGrid map = box_map();
   const ReferencePairs pairs = wall_pairs(0.0, 1.0, 0.5);
