@@ -238,12 +238,7 @@ void validate_log_dataset_options(const LogDatasetOptions& o) {
     if (!std::isfinite(value) || value <= 0.0)
       throw InputError("must be a finite number > 0", "", 0, field);
   };
-  if (o.plan_scale && (!std::isfinite(*o.plan_scale) || *o.plan_scale < 0.05 || *o.plan_scale > 20))
-    throw InputError("must be a number in [0.05, 20]", "", 0, "plan_scale");
-  if (o.bend && (!std::isfinite(*o.bend) || *o.bend < 0.0 || *o.bend > 20.0))
-    throw InputError("must be a number of metres in [0, 20]", "", 0, "bend");
-  if (o.rotation_deg && !std::isfinite(*o.rotation_deg))
-    throw InputError("must be a finite number of degrees", "", 0, "rotation");
+  validate_warp_choice(o.plan_scale, o.bend, o.rotation_deg);
   if (o.wall_thickness_px && (*o.wall_thickness_px < 1 || *o.wall_thickness_px > 20))
     throw InputError("must be 1..20 pixels", "", 0, "wall_thickness_px");
   positive(o.resolution, "resolution");

@@ -144,12 +144,7 @@ void count_statistics(const PlanDataset& d, const SimulatedRun& run, PlanDataset
 }  // namespace
 
 void validate_plan_dataset_options(const PlanDatasetOptions& o) {
-  if (o.plan_scale && (!std::isfinite(*o.plan_scale) || *o.plan_scale < 0.05 || *o.plan_scale > 20))
-    throw InputError("must be a number in [0.05, 20]", "", 0, "plan_scale");
-  if (o.bend && (!std::isfinite(*o.bend) || *o.bend < 0.0 || *o.bend > 20.0))
-    throw InputError("must be a number of metres in [0, 20]", "", 0, "bend");
-  if (o.rotation_deg && !std::isfinite(*o.rotation_deg))
-    throw InputError("must be a finite number of degrees", "", 0, "rotation");
+  validate_warp_choice(o.plan_scale, o.bend, o.rotation_deg);
   if (!(o.min_plan_scale > 0.0 && o.max_plan_scale >= o.min_plan_scale &&
         std::isfinite(o.max_plan_scale)))
     throw InputError("must be 0 < min <= max", "", 0, "plan_scale_range");

@@ -40,4 +40,15 @@ Pose2 PlanTruth::pose_plan_to_grid(const Pose2& pose_in_plan) const {
       {pose_in_plan.x / plan_scale_, pose_in_plan.y / plan_scale_, pose_in_plan.theta});
 }
 
+void validate_warp_choice(const std::optional<double>& plan_scale,
+                          const std::optional<double>& bend,
+                          const std::optional<double>& rotation_deg) {
+  if (plan_scale && (!std::isfinite(*plan_scale) || *plan_scale < 0.05 || *plan_scale > 20))
+    throw InputError("must be a number in [0.05, 20]", "", 0, "plan_scale");
+  if (bend && (!std::isfinite(*bend) || *bend < 0.0 || *bend > 20.0))
+    throw InputError("must be a number of metres in [0, 20]", "", 0, "bend");
+  if (rotation_deg && !std::isfinite(*rotation_deg))
+    throw InputError("must be a finite number of degrees", "", 0, "rotation");
+}
+
 }  // namespace floorgrid

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <optional>
+
 #include "floorgrid/simulation/warp.hpp"
 
 namespace floorgrid {
@@ -39,5 +41,11 @@ class PlanTruth {
   SimulatedWarp warp_;
   double plan_scale_;
 };
+
+/// Checks a simulated dataset's chosen plan scale (0.05-20), bend (0-20 m) and rotation
+/// (finite degrees), each when given; InputError naming the option otherwise.
+void validate_warp_choice(const std::optional<double>& plan_scale,
+                          const std::optional<double>& bend,
+                          const std::optional<double>& rotation_deg);
 
 }  // namespace floorgrid
