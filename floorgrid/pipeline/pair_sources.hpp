@@ -115,13 +115,13 @@ struct RunPairsSummary {
 ReferencePairs pairs_beyond(const ReferencePairs& maps, const Eigen::Matrix2Xd& points_in_grid,
                             double radius);
 
-/// Judges the run's pairs (plan match, coverage of the gridmap's walls, scans), compares them
-/// with the maps' alignment when both pass (their distance through the bent map, their scales),
-/// and chooses: the run's pairs when they pass and agree with the maps (or the maps did not
-/// pass); when they disagree, the source whose pairs the plan-match check scores higher
-/// (`maps_match` computed by `judge_maps`); the maps' pairs when only the maps pass.
-/// The maps' pairs stand in only when their plan match passes `accepts` too (null: any), the
-/// same check the run's passed or failed.
+/// Judges the run's pairs (plan match, convergence, scans, coverage of the gridmap's walls),
+/// compares them with the maps' alignment when both pass (their distance through the bent map,
+/// their scales), and chooses: the run's pairs when they pass and agree with the maps (or the
+/// maps did not pass); when they disagree, the run's only when the plan-match check (`judge`,
+/// giving `maps_match`) scores them higher than the maps' by more than run_match_margin; the
+/// maps' pairs when only the maps pass. The maps' pairs stand in only when their plan match
+/// passes `accepts` too (null: any), the same check the run's passed or failed.
 PairSourceCheck check_pair_sources(const RunPairsSummary& run, const MapAlignment* maps,
                                    const OccupancyGrid& gridmap, const PairSourceOptions& options,
                                    const std::function<PlanMatch(const ReferencePairs&)>& judge,
