@@ -44,9 +44,9 @@ inline std::filesystem::path put(const std::string& name, const std::string& tex
 }
 
 /// The bag readers' limits under fuzzing: a chunk may take 1 MiB (the default, 256 MiB, would let
-/// one input spend seconds decompressing under the sanitizers, and even 64 MiB made the bombs'
-/// mutants a tenth of a second each). The inputs are at most 8 KiB, so a chunk stating more is a
-/// bomb: refused before anything is allocated, through the same check as the real limit.
+/// a bomb's mutant spend its time decompressing under the sanitizers). The inputs are at most
+/// 8 KiB, so a chunk stating more is a bomb: refused before anything is allocated, through the
+/// same check as the real limit.
 inline constexpr std::uint64_t kFuzzChunkBytes = 1ull << 20;
 
 /// Runs `read`; bad input (InputError) is a fine answer.

@@ -230,6 +230,12 @@ PlanMatch plan_match_of(const AlignmentInputs& in, const AlignmentOptions& optio
                           options.localization.plan_location.map_registration);
 }
 
+// Whether `match` passes the plan-match check the options set (both sources are held to it).
+bool match_passes(const AlignmentOptions& options, const PlanMatch& match) {
+  const PlanLocationOptions& location = options.localization.plan_location;
+  return plan_match_accepted(match, location.min_plan_match, location.max_plan_walls_in_free_space);
+}
+
 // The maps' pairs instead of the run's: no wall slide or pair noise (no visits to compare),
 // the maps' scale, and why.
 void use_maps_pairs(Alignment& a, const std::string& why) {
@@ -250,7 +256,6 @@ void use_maps_pairs(Alignment& a, const std::string& why) {
 // the plan match prefers them; none (the job fails) when neither passes.
 void choose_pair_source(const AlignmentInputs& in, const AlignmentOptions& options, Alignment& a) {
   DualLocalization& l = a.localization;
-  const PlanLocationOptions& location = options.localization.plan_location;
   RunPairsSummary run{.localized = l.status.ok,
                       .failure = l.status.message,
                       .pairs = &l.pairs,
@@ -265,16 +270,12 @@ void choose_pair_source(const AlignmentInputs& in, const AlignmentOptions& optio
     run.pair_scans += r.pairs > 0;
   if (run.localized && l.pairs.size() >= 3) {
     run.match = plan_match_of(in, options, l.pairs);
-    run.match_accepted = plan_match_accepted(run.match, location.min_plan_match,
-                                             location.max_plan_walls_in_free_space);
+    run.match_accepted = match_passes(options, run.match);
   }
   a.sources = check_pair_sources(
       run, &*a.maps, in.gridmap, options.sources,
       [&](const ReferencePairs& pairs) { return plan_match_of(in, options, pairs); },
-      [&](const PlanMatch& m) {
-        return plan_match_accepted(m, location.min_plan_match,
-                                   location.max_plan_walls_in_free_space);
-      });
+      [&](const PlanMatch& m) { return match_passes(options, m); });
   const PairSourceCheck& c = *a.sources;
   if (c.chosen == "maps") {
     use_maps_pairs(a, c.fallback);
@@ -395,12 +396,9 @@ void judge_alignment(const AlignmentInputs& in, const AlignmentOptions& options,
     a.plan_match = plan_match_of(in, options, a.localization.pairs);
 
   // Every model, fitted and judged: not on pairs between two different buildings.
-  const PlanLocationOptions& location = options.localization.plan_location;
   // (The maps' own alignment judged its fit: the pairs' similarity cannot, on a bent map.)
   if (a.localization.pairs.size() > 0 &&
-      (a.pairs_from == PairSource::maps ||
-       plan_match_accepted(a.plan_match, location.min_plan_match,
-                           location.max_plan_walls_in_free_space)))
+      (a.pairs_from == PairSource::maps || match_passes(options, a.plan_match)))
     fit_and_judge_models(in, options, a, progress);
 }
 

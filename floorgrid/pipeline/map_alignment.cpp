@@ -12,6 +12,7 @@
 #include "floorgrid/core/validation.hpp"
 #include "floorgrid/geometry/displacement_lattice.hpp"
 #include "floorgrid/geometry/pose2.hpp"
+#include "floorgrid/geometry/transform_estimation.hpp"
 #include "floorgrid/maps/wall_surface_field.hpp"
 #include "floorgrid/pipeline/wall_slide.hpp"
 
@@ -181,33 +182,17 @@ WarpScale warp_scale(const MapWarp& warp, const std::vector<Eigen::Vector2d>& po
   WarpScale s{1.0 / warp.similarity.scale, 0.0, 1.0 / warp.similarity.scale};
   if (scales.empty())
     return s;
-  {
-    // Umeyama's scale: sqrt(sum |q - q_mean|^2 / sum |p - p_mean|^2) after the best rotation,
-    // i.e. trace(S) / sum |g - g_mean|^2 with S the singular values of the cross-covariance.
-    Eigen::Vector2d g_mean = Eigen::Vector2d::Zero(), p_mean = Eigen::Vector2d::Zero();
-    std::vector<Eigen::Vector2d> images;
-    images.reserve(points.size());
-    for (const Eigen::Vector2d& g : points) {
-      images.push_back(warp.apply(g));
-      g_mean += g;
-      p_mean += images.back();
-    }
-    g_mean /= static_cast<double>(points.size());
-    p_mean /= static_cast<double>(points.size());
-    Eigen::Matrix2d cross = Eigen::Matrix2d::Zero();
-    double spread = 0.0;
-    for (std::size_t i = 0; i < points.size(); ++i) {
-      const Eigen::Vector2d dg = points[i] - g_mean;
-      cross += (images[i] - p_mean) * dg.transpose();
-      spread += dg.squaredNorm();
-    }
-    // The best proper rotation R maximizes trace(R^T cross); in 2-D its maximum is the length
-    // of (cross00 + cross11, cross10 - cross01).
-    const double plan_per_world =
-        std::hypot(cross(0, 0) + cross(1, 1), cross(1, 0) - cross(0, 1)) / std::max(spread, 1e-300);
-    if (plan_per_world > 0.0 && std::isfinite(plan_per_world))
-      s.similarity_scale = 1.0 / plan_per_world;
-  }
+  // The least-squares similarity of the warp's images onto the gridmap points (plan -> world):
+  // its scale is world metres per plan metre.
+  PairMoments moments;
+  moments.origin_in_grid = points.front();
+  moments.origin_in_plan = warp.apply(points.front());
+  for (const Eigen::Vector2d& g : points)
+    moments.add(warp.apply(g), g);
+  const std::optional<TransformEstimate> fit =
+      fit_transform(moments, {.kind = TransformKind::similarity, .reflection = Reflection::forbid});
+  if (fit && fit->scale > 0.0 && std::isfinite(fit->scale))
+    s.similarity_scale = fit->scale;
   s.scale = median(scales);
   std::vector<double> deviations;
   deviations.reserve(scales.size());

@@ -95,7 +95,6 @@ void judge_run(const RunPairsSummary& run, const OccupancyGrid& gridmap, const P
   c.scans = run.scans;
   c.pair_scans = run.pair_scans;
   c.run_match = run.match;
-  c.run_match_accepted = run.match_accepted;
   if (!c.run_localized) {
     c.run_failure = run.failure.empty() ? "the run made no pairs" : run.failure;
     return;

@@ -63,7 +63,6 @@ struct PairSourceCheck {
   bool run_localized = false;  ///< the run made pairs (its localization succeeded)
   std::string run_failure;     ///< why the run's pairs are not used ("" when they are usable)
   PlanMatch run_match;         ///< the plan match under the run's pairs
-  bool run_match_accepted = false;
   double coverage = 0.0;       ///< share of the gridmap's wall points the run's pairs cover
   std::size_t pair_scans = 0;  ///< scans that made pairs
   std::size_t scans = 0;       ///< scans in the log

@@ -1,16 +1,15 @@
 #include "floorgrid/pipeline/plan_location.hpp"
 
-#include "floorgrid/pipeline/plan_scale_search.hpp"
-
 #include <fmt/format.h>
-
-#include <memory>
-#include <numbers>
-#include <optional>
 
 #include <algorithm>
 #include <chrono>
+#include <memory>
+#include <numbers>
+#include <optional>
 #include <vector>
+
+#include "floorgrid/pipeline/plan_scale_search.hpp"
 
 namespace floorgrid {
 
@@ -139,7 +138,6 @@ PlanLocation locate_run_on_plan(const DualMaps& maps, const DualLocalizerInputs&
     } else if (!inputs.plan_scale) {
       // ... fitted on the run's scans placed on the plan by the bent map, from its scale within
       // its spread: a drawing wrong in places, or a bent gridmap, has no one scale.
-      location.scale = prior->scale.scale;
       search_plan_scale_from_maps(maps, inputs.log, options, *warp, prior->scale.scale,
                                   std::max(prior->scale.relative_std, step.maps_min_scale_share),
                                   location, result);

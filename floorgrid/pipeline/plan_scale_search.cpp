@@ -8,8 +8,6 @@
 #include <utility>
 #include <vector>
 
-#include "floorgrid/core/statistics.hpp"
-
 namespace floorgrid {
 
 namespace {
@@ -188,10 +186,8 @@ std::size_t reckoned_inliers(const DualMaps& maps, const ReckonedScans& run, con
       const Pose2 step = run.grid_poses[k - 1].between(run.grid_poses[k]);
       plan = plan.compose({step.x / scale, step.y / scale, step.theta});
     }
-    const ScanMatch m =
-        maps.plan_rays() ? match_scan(maps.plan_walls(), run.observations[k], plan, scale, match,
-                                      *maps.plan_rays(), options.plan.runner.beam_tolerance)
-                         : match_scan(maps.plan_walls(), run.observations[k], plan, scale, match);
+    const ScanMatch m = match_with(maps.plan_walls(), run.observations[k], plan, scale, match,
+                                   maps.plan_rays(), options.plan.runner.beam_tolerance);
     if (m.ok()) {
       plan = m.pose;
       inliers += m.inliers;
@@ -235,8 +231,9 @@ void search_plan_scale_from_maps(const DualMaps& maps, const RobotLog& log,
   }
   // Coarse to fine: the maps' scale +- its spread, then around the best.
   double centre = prior;
-  double range = std::clamp(search.maps_sigmas * prior_relative_std, search.maps_min_range,
-                            search.maps_max_range);
+  const double first_range = std::clamp(search.maps_sigmas * prior_relative_std,
+                                        search.maps_min_range, search.maps_max_range);
+  double range = first_range;
   const int steps = std::max(1, search.profile_steps);
   std::vector<double> scales;
   std::vector<std::size_t> inliers;
@@ -255,9 +252,7 @@ void search_plan_scale_from_maps(const DualMaps& maps, const RobotLog& log,
   result.notes.push_back(fmt::format(
       "plan scale {:.4f} by dead reckoning {} of the gridmap filter's scans on the plan from "
       "where the maps put them, over the maps' {:.4f} +- {:.1f}%",
-      scale, run.scans.size(), prior,
-      100.0 * std::clamp(search.maps_sigmas * prior_relative_std, search.maps_min_range,
-                         search.maps_max_range)));
+      scale, run.scans.size(), prior, 100.0 * first_range));
   location.scale = scale;
   location.scale_sigma = 0.0;
   location.keep_scale = true;
