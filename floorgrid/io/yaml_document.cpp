@@ -1,6 +1,10 @@
 #include "floorgrid/io/yaml_document.hpp"
 
+#include <yaml-cpp/eventhandler.h>
+
+#include <algorithm>
 #include <map>
+#include <sstream>
 #include <utility>
 #include <vector>
 
@@ -49,25 +53,80 @@ void reject_duplicate_keys(const YAML::Node& root, const std::string& file,
   }
 }
 
+/// Where each document of a YAML text starts (its first node's mark), from the parser's events.
+class DocumentStarts : public YAML::EventHandler {
+ public:
+  std::vector<YAML::Mark> documents;  // where each `---` (or the text) starts one
+  std::vector<YAML::Mark> first_nodes;
+
+  void OnDocumentStart(const YAML::Mark& mark) override { documents.push_back(mark); }
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark& mark, YAML::anchor_t) override { node(mark); }
+  void OnAlias(const YAML::Mark& mark, YAML::anchor_t) override { node(mark); }
+  void OnScalar(const YAML::Mark& mark, const std::string&, YAML::anchor_t,
+                const std::string&) override {
+    node(mark);
+  }
+  void OnSequenceStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t,
+                       YAML::EmitterStyle::value) override {
+    node(mark);
+  }
+  void OnSequenceEnd() override {}
+  void OnMapStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t,
+                  YAML::EmitterStyle::value) override {
+    node(mark);
+  }
+  void OnMapEnd() override {}
+
+ private:
+  void node(const YAML::Mark& mark) {
+    if (first_nodes.size() < documents.size())
+      first_nodes.push_back(mark);
+  }
+};
+
+/// Counts the documents of `text`, refusing a token the parser cannot move past. yaml-cpp 0.7's
+/// LoadAll never returns on a ',' outside [ ] or { } (",a", "[a],b"): it starts one empty
+/// document after another at the same place. Here a document that starts where the one before
+/// it started is that stray token, and a syntax error.
+std::size_t count_documents(const std::string& text, const std::filesystem::path& path) {
+  std::istringstream stream(text);
+  YAML::Parser parser(stream);
+  DocumentStarts starts;
+  while (parser.HandleNextDocument(starts)) {
+    const auto& docs = starts.documents;
+    if (docs.size() >= 2 && docs.back().pos <= docs[docs.size() - 2].pos) {
+      const auto at = static_cast<std::size_t>(std::max(docs.back().pos, 0));
+      const std::string token = at < text.size() ? std::string(1, text[at]) : "end of text";
+      throw InputError(
+          "YAML syntax error: unexpected '" + token + "' (a ',' belongs inside [ ] or { })",
+          path.string(), docs.back().line + 1);
+    }
+  }
+  if (starts.documents.size() > 1) {
+    const YAML::Mark& second =
+        starts.first_nodes.size() > 1 ? starts.first_nodes[1] : starts.documents[1];
+    throw InputError(
+        "holds " + std::to_string(starts.documents.size()) +
+            " YAML documents (separated by ---), but only one is read: put every key in one",
+        path.string(), second.line + 1);
+  }
+  return starts.documents.size();
+}
+
 }  // namespace
 
 YAML::Node load_yaml_text(const std::string& text, const std::filesystem::path& path) {
-  std::vector<YAML::Node> documents;
+  YAML::Node document;
   try {
-    documents = YAML::LoadAll(text);
+    if (count_documents(text, path) == 0)
+      return YAML::Node();
+    document = YAML::Load(text);
   } catch (const YAML::Exception& e) {
     throw InputError("YAML syntax error: " + e.msg, path.string(), e.mark.line + 1);
   }
-  if (documents.size() > 1) {
-    throw InputError(
-        "holds " + std::to_string(documents.size()) +
-            " YAML documents (separated by ---), but only one is read: put every key in one",
-        path.string(), line_of(documents[1]));
-  }
-  if (documents.empty())
-    return YAML::Node();
-  reject_duplicate_keys(documents.front(), path.string(), 1000 + 4 * text.size());
-  return documents.front();
+  reject_duplicate_keys(document, path.string(), 1000 + 4 * text.size());
+  return document;
 }
 
 YAML::Node load_yaml_file(const std::filesystem::path& path) {

@@ -12,8 +12,10 @@
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "floorgrid/io/dataset_manifest.hpp"
+#include "floorgrid/io/map_io.hpp"
 #include "floorgrid/io/model_io.hpp"
 #include "floorgrid/io/options_schema.hpp"
 #include "floorgrid/io/value_json.hpp"
@@ -101,6 +103,28 @@ TEST(StrictYaml, AnOptionsFileOfTwoDocumentsIsRefused) {
   JobOptions options;
   expect_input_error([&] { io::read_options_yaml(dir / "two.yaml", io::job_option_tree(options)); },
                      {"two.yaml:4:", "2 YAML documents"});
+}
+
+TEST(StrictYaml, AStrayCommaIsASyntaxErrorNotAHang) {
+  // yaml-cpp 0.7's LoadAll never returned on the first three (found by the map_yaml and
+  // dataset_yaml fuzzers in CI): it started one empty document after another at the comma.
+  TempDir dir;
+  struct Case {
+    std::string text, line, says;
+  };
+  const std::vector<Case> cases = {{",ia", ":1:", "unexpected ','"},
+                                   {"[a],b", ":1:", "unexpected ','"},
+                                   {"- a\n,", ":2:", "unexpected ','"},
+                                   {"image: map.pgm\nresolution: 0.05\n,\n", ":3:", "end of map"}};
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.text);
+    test::write_file(dir / "map.yaml", c.text);
+    expect_input_error([&] { io::read_map_yaml(dir / "map.yaml"); },
+                       {"map.yaml" + c.line, "YAML syntax error", c.says});
+    test::write_file(dir / "dataset.yaml", c.text);
+    expect_input_error([&] { io::read_manifest(dir / "dataset.yaml"); },
+                       {"dataset.yaml" + c.line, "YAML syntax error", c.says});
+  }
 }
 
 TEST(StrictYaml, AManifestWithAKeyTwiceIsRefused) {
