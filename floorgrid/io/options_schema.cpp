@@ -1205,6 +1205,17 @@ void visit(OptionVisitor& v, ScaleSearchOptions& o) {
                   "gridmap filter's sure scans on the plan from where the maps put them",
            .choices = {},
            .range = at_least(1)});
+  v.field("maps_segment_scans", o.maps_segment_scans,
+          {.unit = "scans",
+           .doc = "... in segments of this many, each from where the maps put its first scan",
+           .choices = {},
+           .range = at_least(2)});
+  v.field("maps_fit_share", o.maps_fit_share,
+          {.unit = "",
+           .doc = "... the vertex of a parabola through the scales counting at least this share "
+                  "of the way from the fewest endpoints on walls to the most",
+           .choices = {},
+           .range = between(0, 0.99)});
   v.field("maps_sigmas", o.maps_sigmas,
           {.unit = "",
            .doc = "Over the maps' scale 1 +- this many spreads",

@@ -171,12 +171,17 @@ struct ScaleSearchOptions {
   ObservationModelKind model = ObservationModelKind::likelihood_field;
   ObservationOptions observation{.max_beams = 30};  ///< beams per scan of the search
   /// With the maps aligned first (and no clear registration), no particle searches the
-  /// scale: up to maps_scans of the gridmap filter's sure scans are dead-reckoned on the plan
-  /// (search_plan_scale_from_maps) at scales over the maps' scale times 1 +- (maps_sigmas
-  /// times its spread, within maps_min_range..maps_max_range) in profile_steps steps each
-  /// way, then finer around the best; the scale meeting the most walls is kept through the
-  /// run. The same maps and gridmap poses give the same scale, whatever the seed.
+  /// scale: of every k-th scan of the log (up to maps_scans), those where the gridmap filter
+  /// was sure are dead-reckoned on the plan (search_plan_scale_from_maps) at scales over the
+  /// maps' scale times 1 +- (maps_sigmas times its spread, within
+  /// maps_min_range..maps_max_range) in profile_steps steps each way; the top of the walls
+  /// met over the scales is kept through the run. No particle is drawn.
   std::size_t maps_scans = 600;
+  /// ... in segments of this many of them, each from where the maps put its first scan.
+  std::size_t maps_segment_scans = 12;
+  /// The scale is the vertex of a parabola through the scales whose count is at least this
+  /// share of the way from the fewest to the most.
+  double maps_fit_share = 0.3;
   double maps_sigmas = 3.0;
   double maps_min_range = 0.03;
   double maps_max_range = 0.15;

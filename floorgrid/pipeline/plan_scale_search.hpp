@@ -1,5 +1,8 @@
 #pragma once
 
+#include <cstddef>
+#include <vector>
+
 #include "floorgrid/pipeline/plan_location.hpp"
 
 namespace floorgrid {
@@ -13,16 +16,23 @@ void search_plan_scale(const DualMaps& maps, const RobotLog& log,
                        const DualLocalizerOptions& options, PlanLocation& location,
                        DualLocalization& result);
 
+/// The scale at the top of a hump of counts over ascending `scales`: the vertex of a parabola
+/// fitted (least squares) to the scales counting at least `share` of the way from the fewest
+/// to the most, when it opens downwards and its vertex lies among them; else the scale
+/// counting the most.
+double hump_top(const std::vector<double>& scales, const std::vector<std::size_t>& counts,
+                double share);
+
 /// Step 3 with the maps aligned first and no clear registration: up to
 /// ScaleSearchOptions::maps_scans of the gridmap filter's sure scans are dead-reckoned on the
 /// plan at each candidate scale around `prior` (world metres per plan metre; the range from
-/// `prior_relative_std`), starting where `warp` (the maps' bent map) puts the first: each
-/// predicted by the gridmap filter's motion over the scale and matched onto the plan's walls.
-/// A building's scale shows along its corridors, where the scans alone cannot tell it: a
-/// wrong scale carries the robot past the door frames and corners it should meet. The scale
-/// that meets the most (refined between the lattice's steps) is kept through the run. No
-/// particle is drawn: the same maps and gridmap poses give the same scale. Sets location and
-/// the scale fields of `result`.
+/// `prior_relative_std`), in segments that each start where `warp` (the maps' bent map) puts
+/// their first scan: each scan predicted by the gridmap filter's motion over the scale and
+/// matched onto the plan's walls. A building's scale shows along its corridors, where the
+/// scans alone cannot tell it: a wrong scale carries the robot past the door frames and
+/// corners it should meet. The top of the walls met over the scales (a parabola's vertex) is
+/// kept through the run. No particle is drawn. Sets location and the scale fields of
+/// `result`.
 void search_plan_scale_from_maps(const DualMaps& maps, const RobotLog& log,
                                  const DualLocalizerOptions& options, const MapWarp& warp,
                                  double prior, double prior_relative_std, PlanLocation& location,
