@@ -26,8 +26,10 @@ build: configure
 DATA ?= ../shared/data
 
 # The main job on the built-in default: simulate an office, align it (pairs, every model,
-# metrics, overlays), then show what real files look like to `info`.
-demo: build
+# metrics, overlays), then show what real files look like to `info`. Only the floorgrid
+# program is built (not the tests and benchmarks the demo never runs).
+demo: configure
+	cmake --build $(BUILD_DIR) -j $(JOBS) --target floorgrid
 	./$(BUILD_DIR)/floorgrid demo --out $(DEMO_OUT)
 	@if [ -d "$(DATA)" ]; then \
 	  ./$(BUILD_DIR)/floorgrid info $(DATA)/bonn/GMap/GMap.yaml; \
