@@ -121,6 +121,8 @@ YAML::Node load_yaml_text(const std::string& text, const std::filesystem::path& 
   try {
     if (count_documents(text, path) == 0)
       return YAML::Node();
+    // A second parse builds the node: yaml-cpp keeps its node builder (the event handler
+    // LoadAll uses) out of its installed headers. Settings files are small.
     document = YAML::Load(text);
   } catch (const YAML::Exception& e) {
     throw InputError("YAML syntax error: " + e.msg, path.string(), e.mark.line + 1);

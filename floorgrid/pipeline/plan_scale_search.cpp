@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
@@ -210,13 +211,15 @@ std::size_t reckoned_inliers(const DualMaps& maps, const ReckonedScans& run, con
 // their hump is not: the fit follows the hump where the largest count follows the noise.
 double hump_top(const std::vector<double>& scales, const std::vector<std::size_t>& inliers,
                 double share) {
+  if (scales.empty() || scales.size() != inliers.size())
+    throw std::invalid_argument("hump_top: needs one count per scale, and at least one scale");
   const auto [low, high] = std::minmax_element(inliers.begin(), inliers.end());
   const std::size_t best = static_cast<std::size_t>(high - inliers.begin());
   const double floor = static_cast<double>(*low) + share * static_cast<double>(*high - *low);
   Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
   Eigen::Vector3d right = Eigen::Vector3d::Zero();
-  double first = scales[best], last = scales[best];
   const double centre = scales[best];
+  double first = centre, last = centre;  // the fitted scales' extent
   for (std::size_t k = 0; k < scales.size(); ++k) {
     if (static_cast<double>(inliers[k]) < floor)
       continue;
@@ -250,14 +253,13 @@ void search_plan_scale_from_maps(const DualMaps& maps, const RobotLog& log,
     return;
   }
   // The maps' scale +- its spread, the top of the counts' hump.
-  const double centre = prior;
   const double range = std::clamp(search.maps_sigmas * prior_relative_std, search.maps_min_range,
                                   search.maps_max_range);
   const int steps = std::max(1, search.profile_steps);
   const std::size_t segment = std::max<std::size_t>(2, search.maps_segment_scans);
   std::vector<double> scales;
   for (int k = -steps; k <= steps; ++k)
-    scales.push_back(centre * (1.0 + range * k / steps));
+    scales.push_back(prior * (1.0 + range * k / steps));
   std::vector<std::size_t> inliers(scales.size(), 0);
   parallel_tasks(scales.size(), options.threads, [&](std::size_t k) {
     inliers[k] = reckoned_inliers(maps, run, warp, scales[k], segment, options);

@@ -19,7 +19,7 @@ void search_plan_scale(const DualMaps& maps, const RobotLog& log,
 /// The scale at the top of a hump of counts over ascending `scales`: the vertex of a parabola
 /// fitted (least squares) to the scales counting at least `share` of the way from the fewest
 /// to the most, when it opens downwards and its vertex lies among them; else the scale
-/// counting the most.
+/// counting the most. std::invalid_argument without scales or with counts of another size.
 double hump_top(const std::vector<double>& scales, const std::vector<std::size_t>& counts,
                 double share);
 
