@@ -8,6 +8,7 @@
 #include "apps/floorgrid/cli_util.hpp"
 #include "apps/floorgrid/commands.hpp"
 #include "apps/floorgrid/dataset_run.hpp"
+#include "apps/floorgrid/plan_layers_export.hpp"
 #include "floorgrid/core/error.hpp"
 #include "floorgrid/io/atomic_file.hpp"
 #include "floorgrid/io/dataset_loader.hpp"
@@ -90,18 +91,39 @@ void add_export_command(CLI::App& root) {
   auto* cmd = root.add_subcommand(
       "export",
       "Write a model in another tool's terms: QGIS GCPs, a GDAL VRT, an Open-RMF "
-      "traffic-editor layer, or the plan's walls as a nav2 map");
-  cmd->footer(kHelp);
+      "traffic-editor layer, or the plan's walls as a nav2 map; zones and waypoints drawn on "
+      "the plan as nav2 keepout/speed masks, nav2 waypoints or GeoJSON on the gridmap");
+  cmd->footer(std::string(kHelp) + kPlanLayersHelp);
   struct Args {
     std::string model, format, dataset, pairs, source = "plan", background = "free", out;
     std::size_t max_points = io::QgisPointsOptions{}.max_points;
     int lattice = io::GdalVrtOptions{}.lattice_points;
+    PlanLayersExportArgs layers;
   };
   auto args = std::make_shared<Args>();
   cmd->add_option("--model", args->model, "model file written by `fit` or `align`")->required();
-  cmd->add_option("--format", args->format, "qgis-points, gdal-vrt, rmf or nav2-map")
+  cmd->add_option("--format", args->format,
+                  "qgis-points, gdal-vrt, rmf, nav2-map, nav2-keepout, nav2-speed, "
+                  "nav2-waypoints or geojson")
       ->required()
-      ->check(CLI::IsMember({"qgis-points", "gdal-vrt", "rmf", "nav2-map"}));
+      ->check(CLI::IsMember({"qgis-points", "gdal-vrt", "rmf", "nav2-map", "nav2-keepout",
+                             "nav2-speed", "nav2-waypoints", "geojson"}));
+  cmd->add_option("--zones", args->layers.zones,
+                  "nav2-keepout, nav2-speed, geojson: zones on the plan (GeoJSON polygons in "
+                  "plan metres, or a DXF with --layer)");
+  cmd->add_option("--waypoints", args->layers.waypoints,
+                  "nav2-waypoints, geojson: named poses on the plan (GeoJSON points or CSV "
+                  "name,x,y,theta; plan metres, radians)");
+  cmd->add_option("--layer", args->layers.layer,
+                  "--zones DXF: the layer (glob) holding the zones' closed polylines or hatches");
+  cmd->add_option("--margin-sigma", args->layers.margin_sigma,
+                  "masks: widen each zone by K x the model's std_m along its boundary")
+      ->check(CLI::Range(0.0, 10.0))
+      ->capture_default_str();
+  cmd->add_option("--speed-percent", args->layers.speed_percent,
+                  "nav2-speed: the speed limit (% of the robot's maximal speed) of zones without "
+                  "speed_percent or speed_mps")
+      ->check(CLI::Range(1.0, 100.0));
   cmd->add_option("--dataset", args->dataset,
                   "dataset.yaml or its folder: the maps (needed by gdal-vrt, rmf, nav2-map)");
   cmd->add_option("--pairs", args->pairs,
@@ -121,7 +143,9 @@ void add_export_command(CLI::App& root) {
   cmd->add_option("--background", args->background, "nav2-map: what is not wall, free or unknown")
       ->check(CLI::IsMember({"free", "unknown"}))
       ->capture_default_str();
-  cmd->add_option("--out", args->out, "file to write (nav2-map: the YAML; the PGM goes beside)")
+  cmd->add_option("--out", args->out,
+                  "file to write (nav2-map, nav2-keepout, nav2-speed: the YAML; the image and "
+                  "filter info go beside)")
       ->required();
   cmd->callback([args] {
     const fs::path model_path = args->model;
@@ -137,12 +161,22 @@ void add_export_command(CLI::App& root) {
     if (format == "nav2-map")
       require_dataset(args->dataset, format,
                       "the map takes the gridmap's frame and the plan's walls");
+    if (format == "nav2-keepout" || format == "nav2-speed")
+      require_dataset(args->dataset, format,
+                      "the mask takes the gridmap's size, resolution and origin");
     std::optional<io::LoadedDataset> dataset;
     io::ExportMaps maps;
     if (!args->dataset.empty()) {
       dataset = io::load_dataset(args->dataset);
       report_loading(*dataset);
       maps = io::export_maps(*dataset);
+    }
+    if (is_plan_layers_format(format)) {
+      std::optional<GridGeometry> gridmap;
+      if (maps.gridmap)
+        gridmap = maps.gridmap->geometry;
+      export_plan_layers(format, args->layers, *model, dataset, gridmap, fs::path(args->out));
+      return;
     }
     std::string pairs_from;
     const ReferencePairs pairs = find_pairs(args->pairs, model_path, model->unit(), pairs_from);

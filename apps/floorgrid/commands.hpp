@@ -27,5 +27,7 @@ void add_config_command(CLI::App& root);
 void add_export_command(CLI::App& root);
 /// `floorgrid serve`.
 void add_serve_command(CLI::App& root);
+/// `floorgrid migrate`.
+void add_migrate_command(CLI::App& root);
 
 }  // namespace floorgrid::app

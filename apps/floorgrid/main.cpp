@@ -29,6 +29,7 @@ int main(int argc, char** argv) {
   floorgrid::app::add_config_command(root);
   floorgrid::app::add_export_command(root);
   floorgrid::app::add_serve_command(root);
+  floorgrid::app::add_migrate_command(root);
 
   try {
     root.parse(argc, argv);
