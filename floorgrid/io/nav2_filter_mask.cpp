@@ -132,14 +132,15 @@ Nav2MaskFiles nav2_mask_files(const OccupancyGrid& mask, const MapMetadata& meta
   for (const std::int8_t v : mask.values())
     unknown = unknown || v < 0;
   const bool with_alpha = metadata.mode == MapMode::scale && unknown;
-  std::array<std::uint8_t, 102> table{};  // value + 1 -> pixel
-  for (int v = -1; v <= 100; ++v) {
-    if (v < 0 && with_alpha)
-      continue;  // transparent instead
-    if (metadata.mode == MapMode::trinary && v > 0 && v < 100)
-      continue;  // trinary holds 0, 100 and unknown only
-    table[static_cast<std::size_t>(v + 1)] = nav2_mask_pixel(static_cast<std::int8_t>(v), metadata);
-  }
+  // value + 1 -> pixel, found on first use (a value the mask lacks need not be writable).
+  std::array<int, 102> table;
+  table.fill(-1);
+  const auto pixel_of = [&](int v) {
+    int& p = table[static_cast<std::size_t>(v + 1)];
+    if (p < 0)
+      p = nav2_mask_pixel(static_cast<std::int8_t>(v), metadata);
+    return static_cast<std::uint8_t>(p);
+  };
   std::vector<std::uint8_t> grey(g.size()), alpha(with_alpha ? g.size() : 0, 255);
   for (int iy = 0; iy < g.height; ++iy) {
     for (int ix = 0; ix < g.width; ++ix) {
@@ -152,7 +153,7 @@ Nav2MaskFiles nav2_mask_files(const OccupancyGrid& mask, const MapMetadata& meta
         alpha[i] = 0;
         continue;
       }
-      grey[i] = table[static_cast<std::size_t>(v + 1)];
+      grey[i] = pixel_of(v);
     }
   }
   if (with_alpha) {
