@@ -1630,6 +1630,56 @@ void visit(OptionVisitor& v, WallSlideOptions& o) {
            .range = at_least(1.0)});
 }
 
+void visit(OptionVisitor& v, WallFaceOptions& o) {
+  v.field("enabled", o.enabled,
+          {.unit = "",
+           .doc = "Refine the maps' registration with the offsets of the walls' faces off their "
+                  "strokes (outer walls and the rest), and bend onto the faces",
+           .choices = {}});
+  v.field("seal_radius", o.seal_radius,
+          {.unit = "m",
+           .doc = "Gaps up to twice this in the drawing's outer walls are closed when telling "
+                  "the outside from the inside",
+           .choices = {},
+           .range = between(0.01, 100)});
+  v.field("max_depth", o.max_depth,
+          {.unit = "m",
+           .doc = "The outside is looked for this deep behind a wall surface",
+           .choices = {},
+           .range = between(0.01, 10)});
+  v.field("radius", o.radius,
+          {.unit = "m",
+           .doc = "A gridmap wall point is matched to a plan wall this near",
+           .choices = {},
+           .range = between(0.01, 10)});
+  v.field("huber", o.huber,
+          {.unit = "m",
+           .doc = "Residuals beyond this are down-weighted",
+           .choices = {},
+           .range = between(0.001, 10)});
+  v.field("iterations", o.iterations,
+          {.unit = "",
+           .doc = "Rounds of matching and refitting",
+           .choices = {},
+           .range = between(1, 100)});
+  v.field("min_points", o.min_points,
+          {.unit = "",
+           .doc = "Matched points on outer walls, and on the others, the fit needs",
+           .choices = {},
+           .range = between(1, 1e9)});
+  v.field("max_offset", o.max_offset,
+          {.unit = "m",
+           .doc = "An outer faces' offset beyond this (or below a quarter of it negated), or a "
+                  "partition offset beyond half of it, is not trusted",
+           .choices = {},
+           .range = between(0.001, 10)});
+  v.field("max_scale_change", o.max_scale_change,
+          {.unit = "",
+           .doc = "A refined scale farther off the registration's than this share is not trusted",
+           .choices = {},
+           .range = kOpenShare});
+}
+
 void visit(OptionVisitor& v, MapAlignmentOptions& o) {
   v.field("first_spacing", o.first_spacing,
           {.unit = "m",
@@ -1692,6 +1742,8 @@ void visit(OptionVisitor& v, MapAlignmentOptions& o) {
                   "always)",
            .choices = {},
            .range = any_number()});
+  v.group("faces", "Where the laser meets the drawn walls: the registration refined with them",
+          [&] { visit(v, o.faces); });
   v.require(o.last_spacing <= o.first_spacing, "last_spacing", "<= first_spacing");
 }
 

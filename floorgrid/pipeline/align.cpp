@@ -165,6 +165,9 @@ MapAlignment align_on_maps(const AlignmentInputs& in, const AlignmentOptions& op
         m.registration.runner_up().score, m.stages, m.pairs.size(), m.points,
         options.maps_only.pair_radius, m.fit.score, 100.0 * m.fit.on_walls,
         100.0 * m.fit.in_free_space, m.seconds));
+    if (!m.faces.note.empty() && m.faces.note != "off")
+      notes.push_back(
+          fmt::format("maps: the registration refined on the walls' faces: {}", m.faces.note));
     if (m.runner_up) {
       notes.push_back(
           fmt::format("maps: the best other place, bent as well, has fitness {:.2f} (scale {:.4f}, "

@@ -14,17 +14,42 @@
 #include "floorgrid/geometry/pose2.hpp"
 #include "floorgrid/geometry/transform_estimation.hpp"
 #include "floorgrid/maps/wall_surface_field.hpp"
+#include "floorgrid/pipeline/wall_faces.hpp"
 #include "floorgrid/pipeline/wall_slide.hpp"
 
 namespace floorgrid {
 
 namespace {
 
-// A gridmap wall point and its wall's normal in the grid (zero at a corner or a blob).
+// A gridmap wall point and its wall's normal in the grid (zero at a corner or a blob), and
+// the side the robot saw it from: the normal towards the free side (zero when not one side).
 struct WallPoint {
   Eigen::Vector2d point;
   Eigen::Vector2d normal;
+  Eigen::Vector2d facing = Eigen::Vector2d::Zero();
 };
+
+// The unit normal towards the side of the wall at `point` that the gridmap holds free (the
+// first cell off the wall along the normal, within three), or zero when both sides are (a thin
+// wall seen from both) or neither.
+Eigen::Vector2d free_side(const OccupancyGrid& grid, const Eigen::Vector2d& point,
+                          const Eigen::Vector2d& normal) {
+  const double step = grid.geometry().resolution;
+  const auto free_towards = [&](const Eigen::Vector2d& direction) {
+    for (int k = 1; k <= 3; ++k) {
+      int ix = 0, iy = 0;
+      if (!grid.geometry().cell_of(point + k * step * direction, ix, iy))
+        return false;
+      if (grid.state(ix, iy) != CellState::occupied)
+        return grid.state(ix, iy) == CellState::free;
+    }
+    return false;
+  };
+  const bool plus = free_towards(normal), minus = free_towards(-normal);
+  if (plus == minus)
+    return Eigen::Vector2d::Zero();
+  return plus ? normal : Eigen::Vector2d(-normal);
+}
 
 // The gridmap's wall cells (`cells`, their centres), one per `spacing`-metre square (the
 // first met), with their walls' normals.
@@ -40,7 +65,8 @@ std::vector<WallPoint> spaced_wall_points(const OccupancyGrid& grid,
              .second)
       continue;
     const Eigen::Vector2d along = wall_direction(grid, c, 0.25, 0.25);
-    points.push_back({c, Eigen::Vector2d(-along.y(), along.x())});
+    const Eigen::Vector2d normal(-along.y(), along.x());
+    points.push_back({c, normal, free_side(grid, c, normal)});
   }
   return points;
 }
@@ -48,16 +74,29 @@ std::vector<WallPoint> spaced_wall_points(const OccupancyGrid& grid,
 using PlanWarp = MapWarp;
 
 // A gridmap wall point matched to the plan's nearest wall surface: where it lies on the plan
-// now, the unit normal of that surface, and its distance to it (plan metres).
+// now, the unit normal of that surface, its distance to it (plan metres), and how far off the
+// surface its wall's face lies (plan metres into the room: WallFaceFit).
 struct Match {
   bool found = false;
   Eigen::Vector2d at = Eigen::Vector2d::Zero();
   Eigen::Vector2d normal = Eigen::Vector2d::Zero();
   double distance = 0.0;
+  double offset = 0.0;
+  bool facing = false;  // the surface faces the side the robot saw the wall from
+  bool exterior = false;
+  /// The plan point the gridmap point belongs at: its surface point moved to the face.
+  Eigen::Vector2d target() const { return at - (distance - offset) * normal; }
+};
+
+// Where the laser's faces lie off the drawn walls (wall_faces.hpp), once fitted.
+struct Faces {
+  const ExteriorWalls* walls = nullptr;
+  WallFaceFit fit;
+  double max_depth = 0.0;  // plan metres
 };
 
 Match match_to_plan(const WallSurfaceField& field, const PlanWarp& warp, const WallPoint& w,
-                    double radius_plan, double step, double min_cosine) {
+                    double radius_plan, double step, double min_cosine, const Faces& faces) {
   Match m;
   m.at = warp.apply(w.point);
   m.distance = field.distance(m.at);
@@ -77,6 +116,13 @@ Match match_to_plan(const WallSurfaceField& field, const PlanWarp& warp, const W
       return m;
   }
   m.found = true;
+  // The face the laser saw lies off the surface that faces the same way (a point matched to a
+  // stroke's far surface keeps the surface).
+  if (faces.walls && (rotation_2d(warp.similarity.theta) * w.facing).dot(m.normal) > 0.0) {
+    m.facing = true;
+    m.exterior = faces.walls->exterior(m.at - m.distance * m.normal, m.normal, faces.max_depth);
+    m.offset = face_offset(faces.fit, m.exterior);
+  }
   return m;
 }
 
@@ -85,7 +131,7 @@ Match match_to_plan(const WallSurfaceField& field, const PlanWarp& warp, const W
 // across their walls onto them.
 PlanWarp bend_onto_plan(const WallSurfaceField& field, const std::vector<WallPoint>& points,
                         const MapSimilarity& similarity, double step, double min_cosine,
-                        const MapAlignmentOptions& o) {
+                        const Faces& faces, const MapAlignmentOptions& o) {
   const double scale = similarity.scale;
   Eigen::AlignedBox2d box;
   for (const WallPoint& w : points)
@@ -100,13 +146,15 @@ PlanWarp bend_onto_plan(const WallSurfaceField& field, const std::vector<WallPoi
     for (int round = 0; round < o.rounds; ++round) {
       std::vector<LatticeConstraint> constraints;
       for (const WallPoint& w : points) {
-        const Match m = match_to_plan(field, warp, w, radius, step, min_cosine);
+        const Match m = match_to_plan(field, warp, w, radius, step, min_cosine, faces);
         if (!m.found)
           continue;
         const Eigen::Vector2d p0 = warp.similarity.apply(w.point);
-        // Move across the wall by its distance: n . D(p0) = n . (p - p0) - d (Huber-weighted).
-        const double huber = std::min(1.0, radius / 3.0 / std::max(m.distance, 1e-9));
-        constraints.push_back({p0, m.normal, m.normal.dot(m.at - p0) - m.distance, huber});
+        // Move across the wall onto its face: n . D(p0) = n . (p - p0) - (d - offset)
+        // (Huber-weighted).
+        const double off = m.distance - m.offset;
+        const double huber = std::min(1.0, radius / 3.0 / std::max(off, 1e-9));
+        constraints.push_back({p0, m.normal, m.normal.dot(m.at - p0) - off, huber});
       }
       if (!lattice.fit(constraints, o.stiffness))
         break;
@@ -252,8 +300,34 @@ MapAlignment align_maps(const OccupancyGrid& gridmap, const OccupancyGrid& plan,
   a.points = points.size();
   const double step = plan.geometry().resolution;
   const double min_cosine = std::cos(o.max_normal_angle * std::numbers::pi / 180.0);
+  // The registration refined with where the laser meets the drawn walls (their faces), and
+  // the bend aimed at the faces too.
+  Faces faces;
+  std::optional<ExteriorWalls> exterior;
+  if (o.faces.enabled) {
+    const double plan_per_world = a.registration.best.transform.scale;
+    exterior.emplace(plan, o.faces.seal_radius * plan_per_world);
+    faces.walls = &*exterior;
+    faces.max_depth = o.faces.max_depth * plan_per_world;
+    const auto observe = [&](const MapSimilarity& similarity, double radius) {
+      const PlanWarp rigid{similarity};
+      std::vector<FaceObservation> observed;
+      for (const WallPoint& w : points) {
+        if (w.normal.squaredNorm() == 0.0)
+          continue;
+        const Match m = match_to_plan(field, rigid, w, radius, step, min_cosine, faces);
+        if (m.found && m.facing)
+          observed.push_back({w.point, m.at - m.distance * m.normal, m.normal, m.exterior});
+      }
+      return observed;
+    };
+    faces.fit = fit_wall_faces(observe, a.registration.best.transform, o.faces);
+    a.faces = faces.fit;
+    if (faces.fit.fitted)
+      a.registration.best.transform = faces.fit.similarity;
+  }
   const auto bend = [&](const MapSimilarity& similarity) {
-    return bend_onto_plan(field, points, similarity, step, min_cosine, o);
+    return bend_onto_plan(field, points, similarity, step, min_cosine, faces, o);
   };
   const auto fit_of = [&](const PlanWarp& warp) {
     return scorer.score([&](const Eigen::Vector2d& g) { return warp.apply(g); },
@@ -286,12 +360,12 @@ MapAlignment align_maps(const OccupancyGrid& gridmap, const OccupancyGrid& plan,
   for (const WallPoint& w : points) {
     if (w.normal.squaredNorm() == 0.0)
       continue;  // a corner or a blob (clutter) tells no wall it lies on
-    const Match m = match_to_plan(field, warp, w, o.pair_radius * scale, step, min_cosine);
+    const Match m = match_to_plan(field, warp, w, o.pair_radius * scale, step, min_cosine, faces);
     if (!m.found)
       continue;
-    plan_side.push_back(m.at - m.distance * m.normal);
+    plan_side.push_back(m.target());
     grid_side.push_back(w.point);
-    distances.push_back(m.distance / scale);
+    distances.push_back((m.distance - m.offset) / scale);
   }
   a.pairs.points_in_plan.resize(2, static_cast<Eigen::Index>(plan_side.size()));
   a.pairs.points_in_grid.resize(2, static_cast<Eigen::Index>(plan_side.size()));

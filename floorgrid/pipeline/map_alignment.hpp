@@ -8,6 +8,7 @@
 #include "floorgrid/geometry/reference_pairs.hpp"
 #include "floorgrid/maps/occupancy_grid.hpp"
 #include "floorgrid/pipeline/map_registration.hpp"
+#include "floorgrid/pipeline/wall_faces.hpp"
 
 namespace floorgrid {
 
@@ -51,6 +52,9 @@ struct MapAlignmentOptions {
   /// The registration's correlation_below here (> 1: its 2-D correlation search always runs:
   /// the wall profiles' 1-D search registered 12 of the 27 Halmstad sensor maps, with it all 27).
   double correlation_below = 2.0;
+  /// The registration refined with where the laser meets the drawn walls, and the bend aimed
+  /// at those faces (wall_faces.hpp).
+  WallFaceOptions faces;
 };
 
 /// Checks `options`; throws InputError naming `<prefix><field>`.
@@ -93,7 +97,11 @@ WarpScale warp_scale(const MapWarp& warp, const std::vector<Eigen::Vector2d>& po
 
 /// What align_maps found.
 struct MapAlignment {
-  MapRegistration registration;  ///< the global similarity it started from
+  /// The global similarity it started from (refined by `faces` when that was fitted).
+  MapRegistration registration;
+  /// Where the laser meets the drawn walls: the faces' offsets off the strokes, and the
+  /// registration they refined.
+  WallFaceFit faces;
   /// Plan wall surface points and the gridmap wall points matched to them (metres), one per
   /// gridmap wall point within pair_radius of the refined plan walls.
   ReferencePairs pairs;
