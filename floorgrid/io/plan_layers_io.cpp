@@ -272,6 +272,7 @@ std::vector<Waypoint> parse_waypoints_csv(std::string_view text, const std::stri
   long line_number = 0;
   bool header_seen = false;
   bool has_theta = false;
+  std::size_t columns = 3;
   if (text.substr(0, 3) == "\xEF\xBB\xBF")
     text.remove_prefix(3);
   while (!text.empty()) {
@@ -284,21 +285,22 @@ std::vector<Waypoint> parse_waypoints_csv(std::string_view text, const std::stri
     const auto fields = split(line);
     if (!header_seen) {
       std::vector<std::string> names(fields.begin(), fields.end());
-      const bool ok = names.size() >= 3 && names[0] == "name" && names[1] == "x" &&
-                      names[2] == "y" &&
-                      (names.size() == 3 || (names.size() == 4 && names[3] == "theta"));
+      // Columns after name,x,y[,theta] are ignored: a migrated file (with std_m, flag, ...)
+      // reads back as waypoints.
+      const bool ok = names.size() >= 3 && names[0] == "name" && names[1] == "x" && names[2] == "y";
       if (!ok) {
         throw InputError("expected the header name,x,y[,theta] (got '" + std::string(line) + "')",
                          where, line_number, "header");
       }
-      has_theta = names.size() == 4;
+      has_theta = names.size() >= 4 && names[3] == "theta";
+      columns = names.size();
       header_seen = true;
       continue;
     }
-    const std::size_t columns = has_theta ? 4 : 3;
-    if (fields.size() != columns && !(has_theta && fields.size() == 3)) {
-      throw InputError(fmt::format("expected {} fields (got {})", columns, fields.size()), where,
-                       line_number, "");
+    if (fields.size() != columns && !(columns == 4 && has_theta && fields.size() == 3)) {
+      throw InputError(
+          fmt::format("expected {} fields as the header (got {})", columns, fields.size()), where,
+          line_number, "");
     }
     Waypoint w;
     w.index = out.size();
@@ -307,7 +309,7 @@ std::vector<Waypoint> parse_waypoints_csv(std::string_view text, const std::stri
       w.name = "waypoint " + std::to_string(w.index);
     w.position = {csv_number(fields[1], where, line_number, "x"),
                   csv_number(fields[2], where, line_number, "y")};
-    if (has_theta && fields.size() == 4 && !fields[3].empty())
+    if (has_theta && fields.size() >= 4 && !fields[3].empty())
       w.theta = csv_number(fields[3], where, line_number, "theta");
     out.push_back(std::move(w));
   }

@@ -26,7 +26,7 @@ struct Fitted {
   std::unique_ptr<PointMapping> model;
 };
 
-Fitted fit(const std::string& preset) {
+Fitted fit(const std::string& preset, const std::string& model = "gp") {
   Fitted f{simulate(preset, 1), nullptr};
   const PlanTruth truth = f.data.truth();
   const Eigen::Matrix2Xd walls = filter_layers(f.data.plan, {{"WALLS"}, {}}).sample_points(0.25);
@@ -37,7 +37,7 @@ Fitted fit(const std::string& preset) {
   for (Eigen::Index i = 0; i < pairs.size(); ++i)
     pairs.points_in_grid.col(i) += Eigen::Vector2d(random.normal(0.02), random.normal(0.02));
   MappingOptions options;
-  options.model = "gp";
+  options.model = model;
   f.model = make_mapping(options);
   fit_with_uncertainty(*f.model, options, pairs, CrossValidationOptions{});
   return f;
@@ -45,6 +45,11 @@ Fitted fit(const std::string& preset) {
 
 const Fitted& office() {
   static const Fitted f = fit("office");
+  return f;
+}
+/// The office with a gt model (cheap), for the tests that do not measure against the truth.
+const Fitted& office_gt() {
+  static const Fitted f = fit("office", "gt");
   return f;
 }
 const Fitted& bent_office() {
@@ -132,7 +137,7 @@ TEST(ZoneMask, BentOfficeZonesMatchTheTruthAndTheMarginContainsThem) {
 }
 
 TEST(ZoneMask, AZoneWhollyOffTheGridmapIsRefusedAPartlyOffOneClipped) {
-  const Fitted& f = office();
+  const Fitted& f = office_gt();
   const GridGeometry& g = f.data.gridmap.geometry();
   Zone far;
   far.name = "far away";
@@ -160,7 +165,7 @@ TEST(ZoneMask, AZoneWhollyOffTheGridmapIsRefusedAPartlyOffOneClipped) {
 }
 
 TEST(ZoneMask, SpeedZonesCarryTheirValueAndTheSlowestWinsWhereTheyOverlap) {
-  const Fitted& f = office();
+  const Fitted& f = office_gt();
   std::vector<Zone> zones = zones_in(f.data);
   zones[0].speed.percent = 40.0;
   zones[1].speed.percent = 70.0;
@@ -197,7 +202,7 @@ TEST(ZoneMask, SpeedZonesCarryTheirValueAndTheSlowestWinsWhereTheyOverlap) {
 }
 
 TEST(ZoneMask, RefusesBadOptions) {
-  const Fitted& f = office();
+  const Fitted& f = office_gt();
   ZoneMaskOptions options;
   options.margin_sigma = -1;
   try {

@@ -120,6 +120,12 @@ TEST(PlanLayersIo, ReadsWaypointsCsvAndRefusesNaNNamingLineAndColumn) {
   expect_contains(message, "'x': expected a finite number (got 'nan')");
   expect_contains(error_of([] { io::parse_waypoints_csv("x,y\n1,2\n", "w.csv"); }),
                   "expected the header name,x,y[,theta]");
+  // A migrate output reads back (its further columns ignored).
+  const auto again = io::parse_waypoints_csv(
+      "name,x,y,theta,std_m,nearest_pair_m,flag,extrapolated\ndock,1.5,2,0.25,0.03,0.4,ok,0\n",
+      "new/w.csv");
+  ASSERT_EQ(again.size(), 1u);
+  EXPECT_DOUBLE_EQ(*again[0].theta, 0.25);
 }
 
 class DxfZones : public ::testing::Test {
