@@ -76,7 +76,8 @@ httplib::Server::HandlerWithContentReader with_body(std::size_t limit, Handler h
 bool is_route(const std::string& method, const std::string& path) {
   if (method == "POST")
     return path == "/api/map" || path == "/api/robot_pose" || path == "/api/pairs" ||
-           path == "/api/fit";
+           path == "/api/fit" || path == "/api/zones" || path == "/api/zones/nav2" ||
+           path == "/api/waypoints";
   if (method == "DELETE")
     return path.starts_with("/api/pairs/");
   return method == "GET" || method == "HEAD" || method == "OPTIONS";
@@ -121,12 +122,70 @@ struct ViewerServer::Impl {
       : session(s),
         options(std::move(o)),
         large(options.large_requests),
+        layer_slots(options.layer_requests),
         http(options.connection) {}
   ViewerSession& session;
   ServerOptions options;
-  RequestSlots large;  ///< POST /api/map requests over options.large_request_bytes
+  RequestSlots large;        ///< POST /api/map requests over options.large_request_bytes
+  RequestSlots layer_slots;  ///< zones and waypoints requests
   LimitedHttpServer http;
 };
+
+namespace {
+
+/// The session's maps as the zones and waypoints routes check against them; RequestError 404
+/// when the session has no gridmap (the mask takes its grid).
+PlanLayersContext plan_layers_context(const ViewerSession& session,
+                                      const PlanLayersLimits& limits) {
+  if (session.grid().png.empty())
+    throw RequestError(404, "this session has no gridmap: zones and waypoints map onto it");
+  PlanLayersContext context;
+  context.gridmap = session.grid().geometry;
+  if (!session.plan().png.empty())
+    context.plan_bounds = session.plan().geometry.bounds();
+  context.limits = limits;
+  return context;
+}
+
+/// POST /api/zones, /api/zones/nav2 and /api/waypoints: a body of at most
+/// max_layers_body_bytes, at most layer_requests at once (503 beyond), the model of the
+/// request's start for all of it.
+void add_plan_layer_routes(LimitedHttpServer& http, ViewerSession& session,
+                           const ServerOptions& options, RequestSlots& slots) {
+  using Answer = std::function<nlohmann::json(const nlohmann::json&, const PointMapping&,
+                                              const PlanLayersContext&)>;
+  const auto route = [&](const char* path, Answer answer) {
+    http.Post(path, [&session, &options, &slots, answer](const httplib::Request& req,
+                                                         httplib::Response& res,
+                                                         const httplib::ContentReader& reader) {
+      answering_errors(res, [&] {
+        std::optional<RequestSlots::Slot> slot = slots.try_take();
+        if (!slot) {
+          drop_body(req, res, reader, options.max_layers_body_bytes);
+          throw RequestError(503, "busy: " + std::to_string(slots.slots()) +
+                                      " zones or waypoints requests are being answered; try "
+                                      "again in a moment (Retry-After)");
+        }
+        const nlohmann::json body =
+            parse_request(read_body(req, res, reader, options.max_layers_body_bytes));
+        const PlanLayersContext context = plan_layers_context(session, options.layers);
+        const std::shared_ptr<const PointMapping> model = session.model();
+        answer_json(res, answer(body, *model, context));
+      });
+    });
+  };
+  route("/api/zones", [](const nlohmann::json& body, const PointMapping& model,
+                         const PlanLayersContext& context) {
+    return zones_answer(parse_zones_request(body, context), model, context);
+  });
+  route("/api/zones/nav2", [](const nlohmann::json& body, const PointMapping& model,
+                              const PlanLayersContext& context) {
+    return zones_nav2_answer(parse_zones_request(body, context), model, context);
+  });
+  route("/api/waypoints", waypoints_answer);
+}
+
+}  // namespace
 
 ViewerServer::ViewerServer(ViewerSession& session, ServerOptions options)
     : impl_(std::make_unique<Impl>(session, std::move(options))) {
@@ -322,6 +381,7 @@ ViewerServer::ViewerServer(ViewerSession& session, ServerOptions options)
                throw RequestError(404, "no heat map of kind '" + printable_text(kind) +
                                            "' (this session has " + known + ")");
              }));
+  add_plan_layer_routes(s.http, s.session, s.options, s.layer_slots);
   for (const StaticMount& mount : s.options.static_files) {
     if (!s.http.set_mount_point(mount.prefix, mount.folder.string()))
       throw std::runtime_error("the web folder " + mount.folder.string() + " is not a folder");

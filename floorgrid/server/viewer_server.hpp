@@ -8,6 +8,7 @@
 
 #include "floorgrid/server/connection_limits.hpp"
 #include "floorgrid/server/map_request.hpp"
+#include "floorgrid/server/plan_layers_request.hpp"
 #include "floorgrid/server/viewer_session.hpp"
 
 namespace floorgrid::server {
@@ -37,8 +38,14 @@ struct ServerOptions {
   std::size_t large_request_bytes = 64u << 10;  ///< see large_requests
   /// Answers of more points than this are sent while they are made (chunked), not held whole.
   std::size_t streamed_points = 2000;
+  /// A body of the zones and waypoints routes (a loaded GeoJSON or CSV file) larger gets 413.
+  std::size_t max_layers_body_bytes = 2u << 20;
+  /// Zones and waypoints requests answered at once (each maps a boundary and draws a mask on
+  /// the gridmap's grid: up to a second); another gets 503 with Retry-After.
+  std::size_t layer_requests = 2;
   ConnectionLimits connection;  ///< how long and how much a connection may take
   RequestLimits limits;         ///< what one request may ask for
+  PlanLayersLimits layers;      ///< what one zones or waypoints request may ask for
 };
 
 /// The viewer's HTTP server (cpp-httplib): the JSON API over a ViewerSession and the static
@@ -64,6 +71,11 @@ struct ServerOptions {
 ///   GET  /api/heatmap      {"model_version", "model", "seconds", "layers": [{"kind",
 ///                          "quantity", "clip_m", "url"}]}
 ///   GET  /api/heatmap.png?kind=error|std   a heat map on the plan's pixels
+///   POST /api/zones        zones (GeoJSON, plan metres) mapped onto the gridmap with their
+///                          margin and the mask's picture (zones_answer)
+///   POST /api/zones/nav2   the same zones as nav2 filter-mask files (zones_nav2_answer)
+///   POST /api/waypoints    waypoints (GeoJSON or CSV) mapped, with their nav2 YAML
+///                          (waypoints_answer)
 class ViewerServer {
  public:
   /// A server over `session` (which must outlive it).
