@@ -8,11 +8,17 @@
 # its pairs is under 1 m (20 px) and the alignment was accepted; a failed alignment (non-zero
 # exit) counts as a failure. Printed per file and per building: success and mean error.
 #
-# Usage: bench/halmstad_migrate.sh [build-dir] [work-dir] [max-files-per-building]
+# With CONFIG=FILE in the environment, `align` reads it (`--config`): e.g. a lower
+# align.maps_only.min_fitness, to see whether the alignments refused were right all the same.
+#
+# Usage: bench/halmstad_migrate.sh [build-dir] [work-dir] [max-files-per-building] [skip-per-building]
 set -uo pipefail
 build=${1:-build}
 work=${2:-$(mktemp -d)}
 limit=${3:-1000}
+skip=${4:-0}
+config=()
+[ -n "${CONFIG:-}" ] && config=(--config "$CONFIG")
 bin="$build/floorgrid"
 here=$(cd "$(dirname "$0")/.." && pwd)
 data="$here/../shared/data/halmstad"
@@ -25,7 +31,8 @@ for env in E5 F5 HIH; do
   n=0
   for pairs in "$data/$env"/pairs-sensor/*.csv; do
     n=$((n + 1))
-    [ "$n" -le "$limit" ] || break
+    [ "$n" -gt "$skip" ] || continue
+    [ "$n" -le "$((skip + limit))" ] || break
     name=$(basename "$pairs" .csv)   # <B>__<A>
     new=${name%%__*}
     old=${name##*__}
@@ -47,7 +54,7 @@ with open(sys.argv[1]) as f, open(sys.argv[2], "w") as out:
         out.write(f"p{i},{float(row['plan_x']) * 0.05:.6f},{float(row['plan_y']) * 0.05:.6f}\n")
 PY
     start=$(date +%s%N)
-    "$bin" align "$dir" --maps-only --out "$dir/align" > "$dir/align.log" 2>&1
+    "$bin" align "$dir" --maps-only "${config[@]}" --out "$dir/align" > "$dir/align.log" 2>&1
     status=$?
     accepted=no
     if [ $status -eq 0 ] && [ -f "$dir/align/model.json" ]; then
