@@ -10,6 +10,7 @@
 
 #include "floorgrid/io/map_io.hpp"
 #include "floorgrid/io/truth_json.hpp"
+#include "floorgrid/maps/polygon_raster.hpp"
 #include "tests/support/test_data.hpp"
 
 namespace floorgrid {
@@ -152,6 +153,43 @@ TEST(PlanLayersCommand, ExportsAKeepoutMaskOnTheGridmapsGridWaypointsAndGeoJson)
     EXPECT_TRUE(f["properties"]["extrapolated"].is_boolean()) << f.dump();
   }
   EXPECT_EQ(j["features"][1]["geometry"]["type"], "Point");
+  // The same zone as a mask on "the old map" (the plan's frame: 0.05 m cells from (0, 0)),
+  // carried by migrate onto the gridmap's grid: the export's cells again (both widened by K
+  // std_m, one at boundary points, the other at boundary cells).
+  GridGeometry plan_grid;
+  plan_grid.width = 800;
+  plan_grid.height = 440;
+  plan_grid.resolution = 0.05;
+  Eigen::Matrix2Xd square(2, 4);
+  square << 5, 10, 10, 5, 3, 3, 8, 8;
+  const CellMask zone = rasterize_rings({square}, plan_grid);
+  OccupancyGrid old_mask(plan_grid, CellState::free);
+  for (int iy = 0; iy < plan_grid.height; ++iy)
+    for (int ix = 0; ix < plan_grid.width; ++ix)
+      if (zone.at(ix, iy))
+        old_mask.set_state(ix, iy, CellState::occupied);
+  io::MapWriteOptions trinary;
+  trinary.free_thresh = 0.196;
+  io::write_map(old_mask, dir / "old_keepout.yaml", trinary);
+  const auto migrated = run_floorgrid(
+      "migrate --model " + quoted(dir / "model.json") + " " + quoted(dir / "old_keepout.yaml") +
+      " --gridmap " + quoted(dir / "data" / "gridmap.yaml") + " --out " + quoted(dir / "new"));
+  ASSERT_EQ(migrated.status, 0) << migrated.err;
+  const io::LoadedMap moved = io::read_map_yaml(dir / "new" / "old_keepout.yaml");
+  EXPECT_EQ(moved.grid.width(), gridmap.grid.width());
+  EXPECT_EQ(moved.grid.geometry().origin.x, gridmap.grid.geometry().origin.x);
+  EXPECT_EQ(moved.metadata.mode, io::MapMode::trinary);
+  std::size_t both = 0, either = 0;
+  for (std::size_t i = 0; i < moved.grid.states().size(); ++i) {
+    const bool a = moved.grid.states()[i] == CellState::occupied;
+    const bool b = mask.grid.states()[i] == CellState::occupied;
+    both += a && b;
+    either += a || b;
+  }
+  std::printf("migrated mask against the exported one: IoU %.4f (%zu cells)\n",
+              static_cast<double>(both) / static_cast<double>(either), either);
+  EXPECT_GT(static_cast<double>(both) / static_cast<double>(either), 0.9)
+      << both << " of " << either;
   const auto help = run_floorgrid("export --help");
   for (const char* format : {"nav2-keepout", "nav2-speed", "nav2-waypoints", "geojson"})
     EXPECT_NE(help.out.find(format), std::string::npos) << format;
