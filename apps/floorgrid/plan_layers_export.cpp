@@ -15,6 +15,7 @@ namespace floorgrid::app {
 namespace fs = std::filesystem;
 
 const char* const kPlanLayersHelp = R"(
+
 Plan layers (zones and waypoints drawn on the plan, carried to the robot's map):
   nav2-keepout  --zones FILE: a nav2 KeepoutFilter mask on the gridmap's grid (same size,
                resolution and origin): --out MASK.yaml (mode trinary, occupied_thresh 0.65,
