@@ -22,7 +22,8 @@ namespace floorgrid::io {
 PlanLayers parse_plan_layers_geojson(std::string_view text, const std::string& where);
 
 /// Parses waypoints CSV: header `name,x,y[,theta]` (metres, radians; theta may be empty), one
-/// waypoint a row; further columns are ignored (a `migrate` output reads back). InputError naming `where`, the line and the column.
+/// waypoint a row; further columns are ignored (a `migrate` output reads back). InputError naming
+/// `where`, the line and the column.
 std::vector<Waypoint> parse_waypoints_csv(std::string_view text, const std::string& where);
 
 /// How plan layers are read from a file.
