@@ -39,4 +39,10 @@ export const api = {
   deletePair: (id) => request('DELETE', `/api/pairs/${encodeURIComponent(id)}`),
   fit: (model) => request('POST', '/api/fit', { model }),
   heatmap: () => request('GET', '/api/heatmap'),
+  /// Zones {geojson (object or a file's text), file?, kind, margin_sigma, speed_percent?}
+  /// mapped onto the gridmap with the mask's picture; zonesNav2: the mask's nav2 files.
+  zones: (body) => request('POST', '/api/zones', body),
+  zonesNav2: (body) => request('POST', '/api/zones/nav2', body),
+  /// Waypoints {geojson or csv, file?} mapped onto the gridmap, with the nav2 files.
+  waypoints: (body) => request('POST', '/api/waypoints', body),
 };

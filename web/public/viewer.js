@@ -3,7 +3,7 @@
 // other by the server's model; the gridmap pose is the robot's goal.
 // window.floorgridViewer is the browser tests' hook: {ready, plan, grid (the Leaflet maps),
 // planView, gridView (their MapViews: toLatLng, fromLatLng, turn), turn (the TurnControl:
-// alpha), goal, robot, pairs, overlay, state}.
+// alpha), goal, robot, pairs, overlay, zones, waypoints, state}.
 import { api } from './api.js';
 import { GoalTool } from './goal.js';
 import { HeatMap, WallOverlay } from './layers.js';
@@ -11,6 +11,8 @@ import { LinkedViews, MapView } from './maps.js';
 import { PairsPanel } from './pairs.js';
 import { RobotFeed } from './robot.js';
 import { measureTurn, TurnControl } from './turn.js';
+import { WaypointsTool } from './waypoints.js';
+import { ZonesTool } from './zones.js';
 
 const statusLine = document.getElementById('status');
 
@@ -72,6 +74,8 @@ async function start(hook) {
   const robot = new RobotFeed({ views, api, status, state });
   const overlay = new WallOverlay({ views, status });
   const heatmap = new HeatMap({ views, api, status });
+  const zones = new ZonesTool({ views, api, status, state });
+  const waypoints = new WaypointsTool({ views, api, status, state });
   const pairs = new PairsPanel({
     views, api, status, state,
     onRefit: async () => {
@@ -80,7 +84,8 @@ async function start(hook) {
       showInfo(fresh);
       pairs.setInfo(fresh);
       overlay.setInfo(fresh);
-      await Promise.all([heatmap.setInfo(fresh), turn.refresh(fresh), goal.refresh(), robot.refresh()]);
+      await Promise.all([heatmap.setInfo(fresh), turn.refresh(fresh), goal.refresh(), robot.refresh(),
+                         zones.update(), waypoints.update()]);
     },
   });
   // A new turn redraws all that is drawn on the gridmap, in its new frame.
@@ -88,13 +93,17 @@ async function start(hook) {
     goal.redraw();
     robot.redraw();
     pairs.redraw('grid');
+    zones.redraw();
+    waypoints.redraw();
   });
   Object.assign(hook, { plan: views.plan.map, grid: views.grid.map, planView: views.plan, gridView: views.grid,
-                        turn, goal, robot, pairs, overlay });
+                        turn, goal, robot, pairs, overlay, zones, waypoints });
 
   for (const name of ['plan', 'grid']) {
     views[name].map.on('click', (event) => {
-      if (!pairs.handleClick(name, event.latlng)) goal.pick(name, event.latlng);
+      const taken = pairs.handleClick(name, event.latlng) || zones.handleClick(name, event.latlng)
+        || waypoints.handleClick(name, event.latlng);
+      if (!taken) goal.pick(name, event.latlng);
     });
   }
   wireCopyButtons();

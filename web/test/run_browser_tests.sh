@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The viewer's browser tests as ctest runs them: a small simulated dataset is aligned, served by
-# `floorgrid serve` on a free port, and web/test/viewer.test.mjs drives Debian's chromium against it.
+# `floorgrid serve` on a free port, and web/test/viewer.test.mjs, then
+# web/test/layers.test.mjs (zones and waypoints), drive Debian's chromium against it.
 #
 #   web/test/run_browser_tests.sh FLOORGRID NODE SOURCE_DIR WORK_DIR
 #
@@ -67,6 +68,7 @@ echo "server at $url (log: $work/serve.log)"
 
 status=0
 FLOORGRID_URL="$url" SCREENSHOT_DIR="$work/screenshots" \
-  "$node" --test "$source/web/test/viewer.test.mjs" || status=$?
+  "$node" --test --test-concurrency=1 "$source/web/test/viewer.test.mjs" \
+  "$source/web/test/layers.test.mjs" || status=$?
 echo "screenshots in $work/screenshots"
 exit $status
