@@ -24,7 +24,6 @@ struct Reader {
   const std::string& where;
   double scale;
   PlanLayers layers;
-  bool warned_bulge = false;
 
   Zone new_zone(const DxfEntity& e, const std::string& kind) {
     Zone z;
@@ -40,28 +39,68 @@ struct Reader {
     return Eigen::Vector2d(mirror * x, y) * scale;
   }
 
-  void note_bulge() {
-    if (!warned_bulge) {
-      layers.warnings.push_back(where + ": polyline bulges (arcs) are drawn as straight edges");
-      warned_bulge = true;
+  /// A closed polyline's vertices in its OCS (drawing units) and the bulge of the edge leaving
+  /// each (tan of a quarter of the arc's angle, positive counter-clockwise).
+  struct Bulged {
+    std::vector<Eigen::Vector2d> vertices;
+    std::vector<double> bulges;
+    void add(const Eigen::Vector2d& v) {
+      vertices.push_back(v);
+      bulges.push_back(0.0);
     }
+    void bulge(double b) {
+      if (!bulges.empty())
+        bulges.back() = b;
+    }
+  };
+
+  /// The ring in metres, each bulged edge drawn as its arc (kArcSegmentsPerTurn a turn), in the
+  /// OCS before the mirror so that the arc keeps its side.
+  Ring expand(const DxfEntity& e, const Bulged& b) const {
+    Ring out;
+    const std::size_t n = b.vertices.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      const Eigen::Vector2d& p0 = b.vertices[i];
+      out.push_back(world(e, p0.x(), p0.y()));
+      const double bulge = b.bulges[i];
+      const Eigen::Vector2d& p1 = b.vertices[(i + 1) % n];
+      if (bulge == 0.0 || !std::isfinite(bulge) || p0 == p1 || n < 2)
+        continue;
+      const double theta = 4.0 * std::atan(bulge);
+      const Eigen::Vector2d c = p1 - p0;
+      const Eigen::Vector2d centre =
+          p0 + 0.5 * c + (1.0 - bulge * bulge) / (4.0 * bulge) * Eigen::Vector2d(-c.y(), c.x());
+      const double r = (p0 - centre).norm();
+      const double a0 = std::atan2(p0.y() - centre.y(), p0.x() - centre.x());
+      const int segments = std::max(
+          2, static_cast<int>(std::ceil(std::abs(theta) / (2 * M_PI) * kArcSegmentsPerTurn)));
+      for (int k = 1; k < segments; ++k) {
+        const double a = a0 + theta * k / segments;
+        out.push_back(world(e, centre.x() + r * std::cos(a), centre.y() + r * std::sin(a)));
+      }
+    }
+    return out;
   }
 
   void lwpolyline(const DxfEntity& e) {
     if ((e.integer(70, 0) & 1) == 0)
       open_polyline(e);
     Zone z = new_zone(e, "LWPOLYLINE");
-    std::optional<double> x;
+    Bulged ring;
+    double x = 0.0;
+    bool has_x = false;
     for (const DxfGroup& g : e.groups) {
       if (g.code == 10) {
         x = group_double(g);
-      } else if (g.code == 20 && x) {
-        z.outer.push_back(world(e, *x, group_double(g)));
-        x.reset();
-      } else if (g.code == 42 && group_double(g) != 0.0) {
-        note_bulge();
+        has_x = true;
+      } else if (g.code == 20 && has_x) {
+        ring.add({x, group_double(g)});
+        has_x = false;
+      } else if (g.code == 42) {
+        ring.bulge(group_double(g));
       }
     }
+    z.outer = expand(e, ring);
     add(e, std::move(z));
   }
 
@@ -72,14 +111,15 @@ struct Reader {
     if ((flags & 1) == 0)
       open_polyline(e);
     Zone z = new_zone(e, "POLYLINE");
+    Bulged ring;
     for (const DxfEntity& v : e.children) {
       if (upper_ascii(v.type) != "VERTEX")
         continue;
-      if (v.number(42, 0.0) != 0.0)
-        note_bulge();
       const Eigen::Vector3d p = v.point(10);
-      z.outer.push_back(world(e, p.x(), p.y()));
+      ring.add({p.x(), p.y()});
+      ring.bulge(v.number(42, 0.0));
     }
+    z.outer = expand(e, ring);
     add(e, std::move(z));
   }
 
@@ -116,23 +156,22 @@ struct Reader {
           count = group_integer(gs[i++]);
         double x = 0.0;
         bool has_x = false;
-        while (i < gs.size() && static_cast<long>(ring.size()) < count) {
+        Bulged bulged;
+        while (i < gs.size() && static_cast<long>(bulged.vertices.size()) < count) {
           const DxfGroup& g = gs[i++];
           if (g.code == 10) {
             x = group_double(g);
             has_x = true;
           } else if (g.code == 20 && has_x) {
-            ring.push_back(world(e, x, group_double(g)));
+            bulged.add({x, group_double(g)});
             has_x = false;
-          } else if (g.code == 42 && group_double(g) != 0.0) {
-            note_bulge();
+          } else if (g.code == 42) {
+            bulged.bulge(group_double(g));
           }
         }
-        if (i < gs.size() && gs[i].code == 42) {
-          if (group_double(gs[i]) != 0.0)
-            note_bulge();
-          ++i;
-        }
+        if (i < gs.size() && gs[i].code == 42)
+          bulged.bulge(group_double(gs[i++]));
+        ring = expand(e, bulged);
       } else {
         // Edge path: 93 edges, each 72 type: 1 line (10, 20, 11, 21), 2 arc (10, 20 centre,
         // 40 radius, 50 and 51 angles in degrees, 73 counter-clockwise).

@@ -153,6 +153,14 @@ TEST_F(DxfZones, ReadsClosedPolylinesAndHatchBoundariesOfTheLayer) {
   ASSERT_EQ(triangle.holes.size(), 1u);
   EXPECT_DOUBLE_EQ(std::abs(signed_area(triangle.holes[0])), 2.0);
   EXPECT_DOUBLE_EQ(std::abs(signed_area(layers.zones[2].outer)), 4.0);
+  // A bulged edge is its arc: 2 x 2 plus a half disk of radius 1 (72 segments a turn).
+  const PlanLayers round = io::read_dxf_zones_file(dir_ / "zones.dxf", "ROUND");
+  ASSERT_EQ(round.zones.size(), 1u);
+  EXPECT_NEAR(std::abs(signed_area(round.zones[0].outer)), 4.0 + M_PI / 2, 0.005);
+  double right = 0.0;
+  for (const Eigen::Vector2d& p : round.zones[0].outer)
+    right = std::max(right, p.x());
+  EXPECT_NEAR(right, 3.0, 1e-9) << "the arc bulges outwards";
   // Drawing units scaled to metres.
   const PlanLayers mm = io::read_dxf_zones_file(dir_ / "zones.dxf", "ZONES", 0.001);
   EXPECT_DOUBLE_EQ(std::abs(signed_area(mm.zones[0].outer)), 12e-6);
@@ -163,7 +171,7 @@ TEST_F(DxfZones, AMissingLayerListsTheLayersAndAnOpenPolylineIsRefused) {
       error_of([&] { io::read_dxf_zones_file(dir_ / "zones.dxf", "KEEPOUT"); });
   expect_contains(missing, "zones.dxf");
   expect_contains(missing, "no layer matches 'KEEPOUT'; the file has: ");
-  for (const char* layer : {"OPEN", "WALLS", "ZONES"})
+  for (const char* layer : {"OPEN", "ROUND", "WALLS", "ZONES"})
     expect_contains(missing, layer);
   const std::string open = error_of([&] { io::read_dxf_zones_file(dir_ / "zones.dxf", "OPEN"); });
   expect_contains(open, "LWPOLYLINE on layer 'OPEN' is open");
