@@ -1678,6 +1678,11 @@ void visit(OptionVisitor& v, WallFaceOptions& o) {
            .doc = "A refined scale farther off the registration's than this share is not trusted",
            .choices = {},
            .range = kOpenShare});
+  v.field("localize_on_faces", o.localize_on_faces,
+          {.unit = "",
+           .doc = "The run localizes on the plan with its strokes grown to the faces found "
+                  "(raster plans)",
+           .choices = {}});
 }
 
 void visit(OptionVisitor& v, MapAlignmentOptions& o) {

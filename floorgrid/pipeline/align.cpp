@@ -345,7 +345,9 @@ Alignment align(const AlignmentInputs& in, const AlignmentOptions& options,
   std::vector<std::string> maps_notes;
   a.maps = align_on_maps(in, options, maps_notes);
   // The reference pairs, by dual Monte Carlo localization.
-  a.localization = localize_dual({.plan = in.plan_grid,
+  // Where the faces were found, the run localizes on the plan grown to them.
+  const OccupancyGrid& run_plan = a.maps->plan_at_faces ? *a.maps->plan_at_faces : in.plan_grid;
+  a.localization = localize_dual({.plan = run_plan,
                                   .gridmap = in.gridmap,
                                   .log = in.log,
                                   .start = in.start,

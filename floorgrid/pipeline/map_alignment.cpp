@@ -29,23 +29,17 @@ struct WallPoint {
   Eigen::Vector2d facing = Eigen::Vector2d::Zero();
 };
 
-// The unit normal towards the side of the wall at `point` that the gridmap holds free (the
-// first cell off the wall along the normal, within three), or zero when both sides are (a thin
-// wall seen from both) or neither.
+// The unit normal towards the side of the wall at `point` that the gridmap holds free: the next
+// cell along the normal free on one side, and not on the other (a wall's inside, occupied or
+// unknown); zero otherwise (a one-cell wall seen from both sides, a wall's middle).
 Eigen::Vector2d free_side(const OccupancyGrid& grid, const Eigen::Vector2d& point,
                           const Eigen::Vector2d& normal) {
   const double step = grid.geometry().resolution;
-  const auto free_towards = [&](const Eigen::Vector2d& direction) {
-    for (int k = 1; k <= 3; ++k) {
-      int ix = 0, iy = 0;
-      if (!grid.geometry().cell_of(point + k * step * direction, ix, iy))
-        return false;
-      if (grid.state(ix, iy) != CellState::occupied)
-        return grid.state(ix, iy) == CellState::free;
-    }
-    return false;
+  const auto free_at = [&](const Eigen::Vector2d& p) {
+    int ix = 0, iy = 0;
+    return grid.geometry().cell_of(p, ix, iy) && grid.state(ix, iy) == CellState::free;
   };
-  const bool plus = free_towards(normal), minus = free_towards(-normal);
+  const bool plus = free_at(point + step * normal), minus = free_at(point - step * normal);
   if (plus == minus)
     return Eigen::Vector2d::Zero();
   return plus ? normal : Eigen::Vector2d(-normal);
@@ -100,7 +94,11 @@ Match match_to_plan(const WallSurfaceField& field, const PlanWarp& warp, const W
   Match m;
   m.at = warp.apply(w.point);
   m.distance = field.distance(m.at);
-  if (!(m.distance <= radius_plan))
+  // The radius is about the face: a point may lie as far off the drawn surface as the faces do.
+  const double reach =
+      faces.walls ? std::max({0.0, face_offset(faces.fit, true), face_offset(faces.fit, false)})
+                  : 0.0;
+  if (!(m.distance <= radius_plan + reach))
     return m;
   const Eigen::Vector2d gradient(field.distance(m.at + Eigen::Vector2d(step, 0)) -
                                      field.distance(m.at - Eigen::Vector2d(step, 0)),
@@ -123,6 +121,7 @@ Match match_to_plan(const WallSurfaceField& field, const PlanWarp& warp, const W
     m.exterior = faces.walls->exterior(m.at - m.distance * m.normal, m.normal, faces.max_depth);
     m.offset = face_offset(faces.fit, m.exterior);
   }
+  m.found = m.distance - m.offset <= radius_plan;
   return m;
 }
 
@@ -323,8 +322,11 @@ MapAlignment align_maps(const OccupancyGrid& gridmap, const OccupancyGrid& plan,
     };
     faces.fit = fit_wall_faces(observe, a.registration.best.transform, o.faces);
     a.faces = faces.fit;
-    if (faces.fit.fitted)
+    if (faces.fit.fitted) {
       a.registration.best.transform = faces.fit.similarity;
+      if (plan_walls == PlanWalls::raster_strokes && o.faces.localize_on_faces)
+        a.plan_at_faces = plan_at_faces(plan, *exterior, faces.fit, faces.max_depth);
+    }
   }
   const auto bend = [&](const MapSimilarity& similarity) {
     return bend_onto_plan(field, points, similarity, step, min_cosine, faces, o);

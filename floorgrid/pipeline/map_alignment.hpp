@@ -102,6 +102,9 @@ struct MapAlignment {
   /// Where the laser meets the drawn walls: the faces' offsets off the strokes, and the
   /// registration they refined.
   WallFaceFit faces;
+  /// The plan with its strokes grown to those faces (plan_at_faces), for the run to localize
+  /// on; unset when the faces were not fitted or the plan is a vector drawing.
+  std::optional<OccupancyGrid> plan_at_faces;
   /// Plan wall surface points and the gridmap wall points matched to them (metres), one per
   /// gridmap wall point within pair_radius of the refined plan walls.
   ReferencePairs pairs;

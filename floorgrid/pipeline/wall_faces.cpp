@@ -7,6 +7,8 @@
 #include <cmath>
 #include <deque>
 
+#include "floorgrid/maps/wall_surface_field.hpp"
+
 namespace floorgrid {
 
 namespace {
@@ -85,6 +87,37 @@ bool ExteriorWalls::exterior(const Eigen::Vector2d& surface, const Eigen::Vector
     }
   }
   return false;
+}
+
+OccupancyGrid plan_at_faces(const OccupancyGrid& plan, const ExteriorWalls& exterior,
+                            const WallFaceFit& fit, double max_depth) {
+  OccupancyGrid out = plan;
+  const double reach = std::max(fit.exterior_offset, fit.partition_offset);
+  if (!fit.fitted || !(reach > 0.0))
+    return out;
+  const double step = plan.geometry().resolution;
+  const WallSurfaceField field(plan, reach + 2.0 * step, WallSurfaceField::Line::surface);
+  for (int iy = 0; iy < plan.height(); ++iy) {
+    for (int ix = 0; ix < plan.width(); ++ix) {
+      if (is_wall(plan.state(ix, iy)) || exterior.outside(ix, iy))
+        continue;
+      const Eigen::Vector2d c = plan.geometry().cell_center(ix, iy);
+      const double d = field.distance(c);
+      if (!(d <= reach))
+        continue;
+      const Eigen::Vector2d gradient(field.distance(c + Eigen::Vector2d(step, 0)) -
+                                         field.distance(c - Eigen::Vector2d(step, 0)),
+                                     field.distance(c + Eigen::Vector2d(0, step)) -
+                                         field.distance(c - Eigen::Vector2d(0, step)));
+      if (gradient.norm() < 1e-9)
+        continue;
+      const Eigen::Vector2d n = gradient.normalized();
+      const bool outer = exterior.exterior(c - d * n, n, max_depth);
+      if (d <= (outer ? fit.exterior_offset : fit.partition_offset))
+        out.set_cell(ix, iy, CellState::occupied, kOccupancyOccupied);
+    }
+  }
+  return out;
 }
 
 WallFaceFit fit_wall_faces(const FaceMatcher& match, const MapSimilarity& start,

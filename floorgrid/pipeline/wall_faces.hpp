@@ -39,6 +39,9 @@ struct WallFaceOptions {
   /// (walls are not thicker than twice this), nor a partition offset beyond half of it.
   double max_offset = 0.4;
   double max_scale_change = 0.03;  ///< share: a refined scale farther off is not trusted
+  /// The run localizes on the plan with its strokes grown to the faces (plan_at_faces): its
+  /// filters, scan matches and pairs then meet the walls where the laser does.
+  bool localize_on_faces = true;
 };
 
 /// Which of a plan's drawn walls have the building's outside behind them.
@@ -53,6 +56,11 @@ class ExteriorWalls {
   /// off the wall, has the outside behind it within `max_depth` plan metres.
   bool exterior(const Eigen::Vector2d& surface, const Eigen::Vector2d& normal,
                 double max_depth) const;
+  /// Whether cell (ix, iy) of the plan is outside the building.
+  bool outside(int ix, int iy) const {
+    return outside_[static_cast<std::size_t>(iy) * plan_.width() + static_cast<std::size_t>(ix)] !=
+           0;
+  }
 
  private:
   const OccupancyGrid& plan_;
@@ -87,6 +95,13 @@ using FaceMatcher =
 /// n . (s R g + t - surface) = offset(kind), robustly (Huber), re-matching each round.
 WallFaceFit fit_wall_faces(const FaceMatcher& match, const MapSimilarity& start,
                            const WallFaceOptions& options);
+
+/// `plan` with its strokes grown into the rooms up to the faces the fit found (the outer walls'
+/// by its exterior offset, the others' by its partition offset; never shrunk), so that a robot
+/// localizing on it meets walls where the laser does. `plan` itself when the fit was not used.
+/// `max_depth`: plan metres, as ExteriorWalls::exterior.
+OccupancyGrid plan_at_faces(const OccupancyGrid& plan, const ExteriorWalls& exterior,
+                            const WallFaceFit& fit, double max_depth);
 
 /// The offset (plan metres) a matched point's target lies off its drawn surface.
 inline double face_offset(const WallFaceFit& fit, bool exterior) {

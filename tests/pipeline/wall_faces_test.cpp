@@ -42,7 +42,9 @@ void draw(OccupancyGrid& grid, const Eigen::Vector2d& a, const Eigen::Vector2d& 
 }
 
 OccupancyGrid plan_grid() {
-  GridGeometry g{.width = 480, .height = 320, .resolution = kResolution, .origin = {-2, -2, 0}};
+  // Lines through cell centres: each stroke one cell, its surfaces half a cell off the line.
+  GridGeometry g{
+      .width = 480, .height = 320, .resolution = kResolution, .origin = {-2.025, -2.025, 0}};
   OccupancyGrid plan(g, CellState::free);
   for (bool exterior : {true, false}) {
     for (const Line& l : walls(exterior))
@@ -53,8 +55,10 @@ OccupancyGrid plan_grid() {
 
 // The world the laser sees: every wall a solid of its thickness centred on its drawn line; the
 // gridmap marks the faces a robot inside sees, free space inside, unknown elsewhere.
-OccupancyGrid gridmap() {
-  GridGeometry g{.width = 600, .height = 400, .resolution = kResolution, .origin = {-1, -1, 0}};
+OccupancyGrid gridmap(double partition) {
+  // The outer faces through cell centres.
+  GridGeometry g{
+      .width = 600, .height = 400, .resolution = kResolution, .origin = {-1.025, -1.025, 0}};
   OccupancyGrid grid(g, CellState::unknown);
   const auto world = [](const Eigen::Vector2d& p) -> Eigen::Vector2d {
     return kPlanScale * p + kShift;
@@ -81,31 +85,24 @@ OccupancyGrid gridmap() {
     const auto clip = [&](Eigen::Vector2d p) {
       return Eigen::Vector2d(std::clamp(p.x(), lo.x(), hi.x()), std::clamp(p.y(), lo.y(), hi.y()));
     };
-    for (double off = -kPartition / 2 + 0.01; off < kPartition / 2; off += 0.02)
+    for (double off = -partition / 2 + 0.01; off < partition / 2; off += 0.02)
       draw(grid, clip(a + off * across), clip(b + off * across), CellState::unknown);
     for (double side : {-1.0, 1.0}) {
-      draw(grid, clip(a + side * kPartition / 2 * across), clip(b + side * kPartition / 2 * across),
+      draw(grid, clip(a + side * partition / 2 * across), clip(b + side * partition / 2 * across),
            CellState::occupied);
     }
   }
   return grid;
 }
 
-MapAlignment align(bool faces) {
+MapAlignment align(bool faces, double partition = kPartition) {
   MapAlignmentOptions o;
   o.faces.enabled = faces;
-  return align_maps(gridmap(), plan_grid(), PlanWalls::raster_strokes, {}, o);
+  return align_maps(gridmap(partition), plan_grid(), PlanWalls::raster_strokes, {}, o);
 }
 
 double plan_scale(const MapAlignment& a) {
   return 1.0 / a.registration.best.transform.scale;
-}
-
-TEST(WallFaces, WithoutTheFacesTheScaleComesOutLowByTheOuterWallsThickness) {
-  const MapAlignment a = align(false);
-  ASSERT_TRUE(a.registration.found);
-  // The outline seen is 0.4 m smaller than drawn on 25 and 15 m: 1.6-2.7% low.
-  EXPECT_LT(plan_scale(a) / kPlanScale - 1.0, -0.008);
 }
 
 // The fit alone, on matches made analytically: each face point of the world matched to the
@@ -167,6 +164,56 @@ TEST(WallFaces, TheFitFindsTheScaleAndBothOffsetsFromAStretchedStart) {
   EXPECT_NEAR(fit.partition_offset / plan_per_world, kPartition / 2 - half_cell * kPlanScale, 0.01);
   // Off (the default), the start is kept.
   EXPECT_FALSE(fit_wall_faces(match, start, WallFaceOptions{}).fitted);
+}
+
+// End to end through align_maps. Partitions 0.36 m thick here: a gridmap wall point's direction
+// comes from the occupied cells within 0.25 m, so the two faces of a thinner partition read as
+// one blob and tell no wall (as in real gridmaps); these keep one face per side.
+TEST(WallFaces, TheMapsAlignmentFindsTheFacesAndTheScale) {
+  constexpr double kThick = 0.36;
+  const MapAlignment a = align(true, kThick);
+  ASSERT_TRUE(a.registration.found);
+  ASSERT_TRUE(a.faces.fitted) << a.faces.note;
+  EXPECT_NEAR(plan_scale(a) / kPlanScale, 1.0, 0.002) << a.faces.note;
+  const double plan_per_world = a.registration.best.transform.scale;
+  const double half_cell = 0.5 * kResolution * kPlanScale;  // world metres
+  EXPECT_NEAR(a.faces.exterior_offset / plan_per_world, kExterior / 2 - half_cell, 0.03);
+  EXPECT_NEAR(a.faces.partition_offset / plan_per_world, kThick / 2 - half_cell, 0.03);
+  // The maps' pairs put each gridmap face point where the truth puts it on the plan.
+  std::vector<double> errors;
+  for (Eigen::Index i = 0; i < a.pairs.size(); ++i) {
+    const Eigen::Vector2d truth = (a.pairs.points_in_grid.col(i) - kShift) / kPlanScale;
+    errors.push_back((a.pairs.points_in_plan.col(i) - truth).norm() * kPlanScale);
+  }
+  ASSERT_GT(errors.size(), 100u);
+  std::nth_element(errors.begin(), errors.begin() + errors.size() / 2, errors.end());
+  EXPECT_LT(errors[errors.size() / 2], 0.04);
+  // Without the faces, the same maps come out stretched.
+  EXPECT_LT(plan_scale(align(false, kThick)) / kPlanScale - 1.0, -0.008);
+}
+
+TEST(WallFaces, ThePlanAtTheFacesGrowsEachStrokeByItsOffsetIntoTheRooms) {
+  const OccupancyGrid plan = plan_grid();
+  const ExteriorWalls exterior(plan, 1.0);
+  WallFaceFit fit;
+  fit.fitted = true;
+  fit.exterior_offset = 0.16;  // plan metres off the strokes' surfaces (0.025 off their lines)
+  fit.partition_offset = 0.048;
+  const OccupancyGrid grown = plan_at_faces(plan, exterior, fit, 0.5);
+  const auto occupied = [&](double x, double y) {
+    int ix = 0, iy = 0;
+    return grown.geometry().cell_of({x, y}, ix, iy) && grown.state(ix, iy) == CellState::occupied;
+  };
+  EXPECT_TRUE(occupied(5, 0.15));  // the bottom outer wall, grown to 0.185
+  EXPECT_FALSE(occupied(5, 0.25));
+  EXPECT_FALSE(occupied(5, -0.15));  // never into the outside
+  EXPECT_TRUE(occupied(7.06, 3));    // a partition, grown to 7.073 on either side
+  EXPECT_TRUE(occupied(6.94, 3));
+  EXPECT_FALSE(occupied(7.12, 3));
+  EXPECT_FALSE(occupied(6.88, 3));
+  // Not fitted: the plan as drawn.
+  fit.fitted = false;
+  EXPECT_EQ(plan_at_faces(plan, exterior, fit, 0.5).counts().occupied, plan.counts().occupied);
 }
 
 TEST(WallFaces, TheOutsideIsToldFromTheInsideThroughADoorway) {
