@@ -15,8 +15,14 @@ namespace floorgrid::server {
 
 namespace {
 
+/// A refusal whose message repeats the request's bytes (a file's or a feature's name) only as
+/// printable ASCII (%XX).
+RequestError refuse(int status, const std::string& message) {
+  return RequestError(status, printable_text(message, 600));
+}
+
 RequestError bad(const std::string& message) {
-  return RequestError(400, message);
+  return refuse(400, message);
 }
 
 std::string number_text(double x) {
@@ -30,18 +36,19 @@ auto reading_layers(Work work) {
   try {
     return work();
   } catch (const InputError& e) {
-    throw bad(printable_text(e.what(), 600));
+    throw bad(e.what());
   }
 }
 
-/// "file": the name messages give the layers (the file the operator loaded), else "request".
+/// "file": the name messages give the layers (the file the operator loaded), else "request";
+/// repeated as printable text (see refuse).
 std::string file_name(const nlohmann::json& request) {
   const auto it = request.find("file");
   if (it == request.end() || it->is_null())
     return "request";
   if (!it->is_string())
     throw bad("'file' must be a string (the loaded file's name)");
-  return printable_text(it->get_ref<const std::string&>(), 120);
+  return it->get_ref<const std::string&>().substr(0, 120);
 }
 
 /// A number field in [lo, hi], or `fallback` when absent.
@@ -140,11 +147,11 @@ std::vector<MappedZone> mapped_zones(const ZonesRequest& request, const PointMap
   const double spacing = zone_sample_spacing(model, context.gridmap, request.options);
   const double samples = boundary_length(request.zones) / spacing;
   if (!(samples <= static_cast<double>(limits.max_samples))) {
-    throw RequestError(413, "the zones' boundaries are " +
-                                number_text(std::round(boundary_length(request.zones))) +
-                                " m long: " + number_text(std::round(samples)) +
-                                " samples to map at " + number_text(spacing) + " m, at most " +
-                                std::to_string(limits.max_samples) + " per request");
+    throw refuse(413, "the zones' boundaries are " +
+                          number_text(std::round(boundary_length(request.zones))) +
+                          " m long: " + number_text(std::round(samples)) + " samples to map at " +
+                          number_text(spacing) + " m, at most " +
+                          std::to_string(limits.max_samples) + " per request");
   }
   std::vector<MappedZone> mapped;
   double margin_cells = 0.0;
@@ -161,11 +168,11 @@ std::vector<MappedZone> mapped_zones(const ZonesRequest& request, const PointMap
     }
   }
   if (!(margin_cells <= limits.max_margin_cells)) {
-    throw RequestError(413, "the zones' margins (" + number_text(request.options.margin_sigma) +
-                                " x std_m at every boundary point) would draw " +
-                                number_text(std::round(margin_cells)) + " cells; at most " +
-                                number_text(limits.max_margin_cells) +
-                                ": a smaller margin_sigma, or zones where the model is sure");
+    throw refuse(413, "the zones' margins (" + number_text(request.options.margin_sigma) +
+                          " x std_m at every boundary point) would draw " +
+                          number_text(std::round(margin_cells)) + " cells; at most " +
+                          number_text(limits.max_margin_cells) +
+                          ": a smaller margin_sigma, or zones where the model is sure");
   }
   return mapped;
 }
@@ -270,9 +277,8 @@ ZonesRequest parse_zones_request(const nlohmann::json& request, const PlanLayers
     throw bad(out.file + ": holds no zone (Polygon or MultiPolygon feature)");
   const PlanLayersLimits& limits = context.limits;
   if (out.zones.size() > limits.max_features) {
-    throw RequestError(413, out.file + ": " + std::to_string(out.zones.size()) +
-                                " zones; at most " + std::to_string(limits.max_features) +
-                                " per request");
+    throw refuse(413, out.file + ": " + std::to_string(out.zones.size()) + " zones; at most " +
+                          std::to_string(limits.max_features) + " per request");
   }
   std::size_t vertices = 0;
   for (const Zone& z : out.zones) {
@@ -281,12 +287,12 @@ ZonesRequest parse_zones_request(const nlohmann::json& request, const PlanLayers
       vertices += h.size();
   }
   if (vertices > limits.max_vertices) {
-    throw RequestError(413, out.file + ": the zones have " + std::to_string(vertices) +
-                                " vertices; at most " + std::to_string(limits.max_vertices) +
-                                " per request");
+    throw refuse(413, out.file + ": the zones have " + std::to_string(vertices) +
+                          " vertices; at most " + std::to_string(limits.max_vertices) +
+                          " per request");
   }
   for (Zone& z : out.zones) {
-    const std::string what = out.file + ": " + printable_text(describe(z), 200);
+    const std::string what = out.file + ": " + describe(z);
     for (const Eigen::Vector2d& p : z.outer)
       check_near_plan(p, context, what);
     for (const Ring& h : z.holes) {
@@ -437,12 +443,11 @@ nlohmann::json waypoints_answer(const nlohmann::json& request, const PointMappin
   if (waypoints.empty())
     throw bad(file + ": holds no waypoint (Point feature or CSV row)");
   if (waypoints.size() > context.limits.max_features) {
-    throw RequestError(413, file + ": " + std::to_string(waypoints.size()) +
-                                " waypoints; at most " +
-                                std::to_string(context.limits.max_features) + " per request");
+    throw refuse(413, file + ": " + std::to_string(waypoints.size()) + " waypoints; at most " +
+                          std::to_string(context.limits.max_features) + " per request");
   }
   for (const Waypoint& w : waypoints)
-    check_near_plan(w.position, context, file + ": " + printable_text(describe(w), 200));
+    check_near_plan(w.position, context, file + ": " + describe(w));
   const std::vector<MappedWaypoint> mapped =
       reading_layers([&] { return map_waypoints(model, waypoints, context.gridmap, file); });
   nlohmann::json list = nlohmann::json::array();
