@@ -1678,6 +1678,12 @@ void visit(OptionVisitor& v, WallFaceOptions& o) {
            .doc = "A refined scale farther off the registration's than this share is not trusted",
            .choices = {},
            .range = kOpenShare});
+  v.field("min_offset_difference", o.min_offset_difference,
+          {.unit = "m",
+           .doc = "The outer walls' faces must lie this much farther off their strokes than the "
+                  "partitions' for the fit to be used",
+           .choices = {},
+           .range = between(-10, 10)});
   v.field("localize_on_faces", o.localize_on_faces,
           {.unit = "",
            .doc = "The run localizes on the plan with its strokes grown to the faces found "

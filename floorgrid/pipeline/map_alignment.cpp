@@ -303,7 +303,9 @@ MapAlignment align_maps(const OccupancyGrid& gridmap, const OccupancyGrid& plan,
   // the bend aimed at the faces too.
   Faces faces;
   std::optional<ExteriorWalls> exterior;
-  if (o.faces.enabled) {
+  // A raster drawing's strokes only: a vector drawing's lines are rasterized along their axis,
+  // and its walls are usually drawn as their two faces.
+  if (o.faces.enabled && plan_walls == PlanWalls::raster_strokes) {
     const double plan_per_world = a.registration.best.transform.scale;
     exterior.emplace(plan, o.faces.seal_radius * plan_per_world);
     faces.walls = &*exterior;
@@ -324,7 +326,7 @@ MapAlignment align_maps(const OccupancyGrid& gridmap, const OccupancyGrid& plan,
     a.faces = faces.fit;
     if (faces.fit.fitted) {
       a.registration.best.transform = faces.fit.similarity;
-      if (plan_walls == PlanWalls::raster_strokes && o.faces.localize_on_faces)
+      if (o.faces.localize_on_faces)
         a.plan_at_faces = plan_at_faces(plan, *exterior, faces.fit, faces.max_depth);
     }
   }

@@ -1,5 +1,5 @@
 // Where the laser meets walls drawn as one stroke along their middle: an analytic building whose
-// outer walls are 0.4 m thick and partitions 0.12 m, drawn as one-cell lines. Without the faces'
+// outer walls are 0.5 m thick and partitions 0.12 m, drawn as one-cell lines. Without the faces'
 // offsets the registration stretches the gridmap's outline onto the drawn outline and the plan
 // scale comes out about the outer wall's thickness over the building's extent low.
 #include "floorgrid/pipeline/wall_faces.hpp"
@@ -12,7 +12,7 @@ namespace floorgrid {
 namespace {
 
 constexpr double kPlanScale = 1.25;      // world metres per plan metre
-constexpr double kExterior = 0.40;       // world metres, outer walls' thickness
+constexpr double kExterior = 0.50;       // world metres, outer walls' thickness
 constexpr double kPartition = 0.12;      // world metres, partitions' thickness
 constexpr double kResolution = 0.05;     // both grids, metres per cell
 const Eigen::Vector2d kShift{1.3, 0.7};  // world metres: where the plan's origin lies
