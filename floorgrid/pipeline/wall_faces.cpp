@@ -187,20 +187,13 @@ WallFaceFit fit_wall_faces(const FaceMatcher& match, const MapSimilarity& start,
   const double change = start.scale / refined.scale - 1.0;  // of the plan scale, 1 / scale
   fit.exterior_offset = x(4);
   fit.partition_offset = x(5);
-  if (exterior_m - partition_m < o.min_offset_difference) {
-    fit.note = fmt::format(
-        "not used: outer faces {:.3f} m and partition faces {:.3f} m off their strokes, alike "
-        "(the scale {:+.2f}%)",
-        exterior_m, partition_m, 100.0 * change);
-    fit.similarity = start;
-    return fit;
-  }
-  if (exterior_m < -o.max_offset / 4 || exterior_m > o.max_offset ||
+  const bool alike = exterior_m - partition_m < o.min_offset_difference;
+  if (alike || exterior_m < -o.max_offset / 4 || exterior_m > o.max_offset ||
       std::abs(partition_m) > o.max_offset / 2 || std::abs(change) > o.max_scale_change) {
     fit.note = fmt::format(
-        "not used: outer faces {:.3f} m and partition faces {:.3f} m off their strokes, the "
+        "not used: outer faces {:.3f} m and partition faces {:.3f} m off their strokes{}, the "
         "scale {:+.2f}%",
-        exterior_m, partition_m, 100.0 * change);
+        exterior_m, partition_m, alike ? " (alike)" : "", 100.0 * change);
     fit.similarity = start;
     return fit;
   }

@@ -162,8 +162,10 @@ TEST(WallFaces, TheFitFindsTheScaleAndBothOffsetsFromAStretchedStart) {
   const double plan_per_world = fit.similarity.scale;
   EXPECT_NEAR(fit.exterior_offset / plan_per_world, kExterior / 2 - half_cell * kPlanScale, 0.01);
   EXPECT_NEAR(fit.partition_offset / plan_per_world, kPartition / 2 - half_cell * kPlanScale, 0.01);
-  // Off (the default), the start is kept.
-  EXPECT_FALSE(fit_wall_faces(match, start, WallFaceOptions{}).fitted);
+  // Off, the start is kept.
+  WallFaceOptions off;
+  off.enabled = false;
+  EXPECT_FALSE(fit_wall_faces(match, start, off).fitted);
 }
 
 // End to end through align_maps. Partitions 0.36 m thick here: a gridmap wall point's direction
