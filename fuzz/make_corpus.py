@@ -365,6 +365,21 @@ REQUESTS = {
     "fit": '{"model": "tps"}',
     "nested": '{"from": "plan", "points": [[[[[[[1, 2]]]]]]], "x": {"y": [1, {"z": null}]}}',
 }
+PLAN_LAYERS = {
+    "zones": '{"type": "FeatureCollection", "features": ['
+             '{"type": "Feature", "properties": {"name": "bay", "speed_percent": 40}, '
+             '"geometry": {"type": "Polygon", "coordinates": [[[0, 0], [4, 0], [4, 3], [0, 3], '
+             '[0, 0]], [[1, 1], [2, 1], [2, 2], [1, 1]]]}}, '
+             '{"type": "Feature", "properties": {"name": "dock", "heading_deg": 90}, '
+             '"geometry": {"type": "Point", "coordinates": [5.5, 2.25]}}, '
+             '{"type": "Feature", "properties": {}, "geometry": {"type": "MultiPolygon", '
+             '"coordinates": [[[[10, 10], [12, 10], [11, 12], [10, 10]]]]}}]}',
+    "bow-tie": '{"type": "FeatureCollection", "features": [{"type": "Feature", "geometry": '
+               '{"type": "Polygon", "coordinates": [[[0, 0], [2, 2], [2, 0], [0, 2], [0, 0]]]}}]}',
+    "waypoints": "name,x,y,theta\nstation A,1.5,2.25,0.5\ndock,-3,4,\nbad,nan,1,0\n",
+    "polyline": dxf("0\nLWPOLYLINE\n8\nZONES\n90\n4\n70\n1\n10\n0\n20\n0\n"
+                    "10\n4\n20\n0\n42\n0.5\n10\n4\n20\n3\n10\n0\n20\n3\n"),
+}
 
 
 def main() -> None:
@@ -397,6 +412,8 @@ def main() -> None:
         put(out, "scans_csv", name + ".csv", text)
     for name, text in REQUESTS.items():
         put(out, "viewer_request", name + ".json", text)
+    for name, text in PLAN_LAYERS.items():
+        put(out, "plan_layers", name + ".txt", text)
     for model in sorted((ROOT / "tests" / "fixtures" / "models").glob("*.json")):
         put(out, "model_json", model.name, compact_model(model))
     if data.is_dir():

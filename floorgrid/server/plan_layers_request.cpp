@@ -314,7 +314,6 @@ nlohmann::json zones_answer(const ZonesRequest& request, const PointMapping& mod
                              request.file);
   });
   nlohmann::json zones = nlohmann::json::array();
-  std::size_t cells = 0;
   for (std::size_t k = 0; k < mask.zones.size(); ++k) {
     const MappedZone& z = mask.zones[k];
     const Zone& source = request.zones[k];
@@ -338,7 +337,6 @@ nlohmann::json zones_answer(const ZonesRequest& request, const PointMapping& mod
       rings.push_back(std::move(points));
       stds.push_back(std::move(std_m));
     }
-    cells += z.cells;
     zones.push_back({{"name", z.name},
                      {"index", z.index},
                      {"plan", {{"outer", ring_json(source.outer)}, {"holes", holes}}},
