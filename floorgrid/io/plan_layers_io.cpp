@@ -238,7 +238,8 @@ PlanLayers parse_plan_layers_geojson(std::string_view text, const std::string& w
   json root;
   try {
     root = json::parse(text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {
+    // parse_error, and out_of_range for a number beyond a double (1e444).
     throw InputError(std::string("not JSON: ") + e.what(), where, 0, "");
   }
   refuse_geographic_crs(root, where);

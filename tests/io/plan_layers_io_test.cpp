@@ -65,6 +65,16 @@ TEST(PlanLayersIo, ReadsZonesWithHolesMultiPolygonsAndWaypointsFromGeoJson) {
   expect_contains(layers.warnings[0], "feature 3 LineString skipped");
 }
 
+TEST(PlanLayersIo, ANumberBeyondADoubleIsNotJsonNotACrash) {
+  // Found by the plan_layers fuzz target: the JSON parser's out_of_range escaped as a crash.
+  const std::string message = error_of([&] {
+    io::parse_plan_layers_geojson(R"({"type": "Feature", "coordinates": [-61664e444, 0]})",
+                                  "zones.geojson");
+  });
+  expect_contains(message, "zones.geojson");
+  expect_contains(message, "not JSON");
+}
+
 TEST(PlanLayersIo, RefusesAnOpenRingNamingTheFeature) {
   const std::string text = R"({"type": "FeatureCollection", "features": [
     {"type": "Feature", "properties": {"name": "ok"}, "geometry": {"type": "Polygon",
