@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "floorgrid/core/error.hpp"
 #include "floorgrid/core/validation.hpp"
@@ -128,18 +129,32 @@ ZoneMask map_zones_to_mask(const PointMapping& model, const std::vector<Zone>& z
                            const GridGeometry& gridmap, ZoneMaskKind kind,
                            const ZoneMaskOptions& options, const std::string& where) {
   validate(options);
-  if (zones.empty())
-    throw InputError("no zones to draw", where, 0, "zones");
   for (const Zone& zone : zones)
     validate_zone(zone, where);
+  const double spacing = zone_sample_spacing(model, gridmap, options);
+  std::vector<MappedZone> mapped;
+  mapped.reserve(zones.size());
+  for (const Zone& zone : zones)
+    mapped.push_back(map_zone(model, zone, spacing));
+  return mask_of_mapped_zones(std::move(mapped), zones, gridmap, kind, options, where);
+}
+
+ZoneMask mask_of_mapped_zones(std::vector<MappedZone> mapped_zones, const std::vector<Zone>& zones,
+                              const GridGeometry& gridmap, ZoneMaskKind kind,
+                              const ZoneMaskOptions& options, const std::string& where) {
+  validate(options);
+  if (zones.empty())
+    throw InputError("no zones to draw", where, 0, "zones");
+  if (mapped_zones.size() != zones.size())
+    throw std::invalid_argument("mask_of_mapped_zones: one mapped zone per zone");
   ZoneMask result;
   result.kind = kind;
   result.filter = filter_info_for(zones, kind, where);
   result.mask = OccupancyGrid(gridmap, CellState::free);
-  const double spacing = zone_sample_spacing(model, gridmap, options);
   bool any_std = false;
-  for (const Zone& zone : zones) {
-    MappedZone mapped = map_zone(model, zone, spacing);
+  for (std::size_t k = 0; k < zones.size(); ++k) {
+    const Zone& zone = zones[k];
+    MappedZone& mapped = mapped_zones[k];
     const CellMask inside = rasterize_rings(mapped.rings, gridmap);
     CellMask cells = inside;
     for (std::size_t r = 0; r < mapped.rings.size(); ++r) {

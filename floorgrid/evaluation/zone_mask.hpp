@@ -95,4 +95,12 @@ ZoneMask map_zones_to_mask(const PointMapping& model, const std::vector<Zone>& z
                            const GridGeometry& gridmap, ZoneMaskKind kind,
                            const ZoneMaskOptions& options = {}, const std::string& where = "zones");
 
+/// The same mask from zones already mapped (`mapped[k]` is map_zone of `zones_in_plan[k]`, as
+/// a caller that bounds the cost first has them, after validate_zone): rasterized, widened and
+/// checked as map_zones_to_mask does, without mapping them again.
+ZoneMask mask_of_mapped_zones(std::vector<MappedZone> mapped,
+                              const std::vector<Zone>& zones_in_plan, const GridGeometry& gridmap,
+                              ZoneMaskKind kind, const ZoneMaskOptions& options = {},
+                              const std::string& where = "zones");
+
 }  // namespace floorgrid

@@ -87,6 +87,7 @@ struct Faces {
   const ExteriorWalls* walls = nullptr;
   WallFaceFit fit;
   double max_depth = 0.0;  // plan metres
+  double reach = 0.0;      // plan metres: the larger offset of a fitted fit, else 0
 };
 
 Match match_to_plan(const WallSurfaceField& field, const PlanWarp& warp, const WallPoint& w,
@@ -95,10 +96,7 @@ Match match_to_plan(const WallSurfaceField& field, const PlanWarp& warp, const W
   m.at = warp.apply(w.point);
   m.distance = field.distance(m.at);
   // The radius is about the face: a point may lie as far off the drawn surface as the faces do.
-  const double reach =
-      faces.walls ? std::max({0.0, face_offset(faces.fit, true), face_offset(faces.fit, false)})
-                  : 0.0;
-  if (!(m.distance <= radius_plan + reach))
+  if (!(m.distance <= radius_plan + faces.reach))
     return m;
   const Eigen::Vector2d gradient(field.distance(m.at + Eigen::Vector2d(step, 0)) -
                                      field.distance(m.at - Eigen::Vector2d(step, 0)),
@@ -323,6 +321,7 @@ MapAlignment align_maps(const OccupancyGrid& gridmap, const OccupancyGrid& plan,
       return observed;
     };
     faces.fit = fit_wall_faces(observe, a.registration.best.transform, o.faces);
+    faces.reach = std::max({0.0, face_offset(faces.fit, true), face_offset(faces.fit, false)});
     a.faces = faces.fit;
     if (faces.fit.fitted) {
       a.registration.best.transform = faces.fit.similarity;

@@ -308,10 +308,9 @@ ZonesRequest parse_zones_request(const nlohmann::json& request, const PlanLayers
 
 nlohmann::json zones_answer(const ZonesRequest& request, const PointMapping& model,
                             const PlanLayersContext& context) {
-  const std::vector<MappedZone> mapped = mapped_zones(request, model, context);
   const ZoneMask mask = reading_layers([&] {
-    return map_zones_to_mask(model, request.zones, context.gridmap, request.kind, request.options,
-                             request.file);
+    return mask_of_mapped_zones(mapped_zones(request, model, context), request.zones,
+                                context.gridmap, request.kind, request.options, request.file);
   });
   nlohmann::json zones = nlohmann::json::array();
   for (std::size_t k = 0; k < mask.zones.size(); ++k) {
@@ -356,7 +355,6 @@ nlohmann::json zones_answer(const ZonesRequest& request, const PointMapping& mod
                      {"cells_inside", z.cells_inside},
                      {"clipped", z.clipped}});
   }
-  static_cast<void>(mapped);  // mapped first only to bound the mask's cost
   std::size_t mask_cells = 0;
   const GridGeometry& g = mask.mask.geometry();
   for (int iy = 0; iy < g.height; ++iy) {
@@ -378,10 +376,9 @@ nlohmann::json zones_answer(const ZonesRequest& request, const PointMapping& mod
 
 nlohmann::json zones_nav2_answer(const ZonesRequest& request, const PointMapping& model,
                                  const PlanLayersContext& context) {
-  const std::vector<MappedZone> mapped = mapped_zones(request, model, context);
   const ZoneMask mask = reading_layers([&] {
-    return map_zones_to_mask(model, request.zones, context.gridmap, request.kind, request.options,
-                             request.file);
+    return mask_of_mapped_zones(mapped_zones(request, model, context), request.zones,
+                                context.gridmap, request.kind, request.options, request.file);
   });
   const io::Nav2MaskFiles files = io::nav2_mask_files(mask, request.stem);
   const bool png = files.image_name.ends_with(".png");
@@ -391,9 +388,9 @@ nlohmann::json zones_nav2_answer(const ZonesRequest& request, const PointMapping
                   {"media_type", png ? "image/png" : "image/x-portable-graymap"},
                   {"base64", base64(files.image)}});
   list.push_back(text_file(files.params_name, "application/yaml", files.params_yaml));
-  list.push_back(
-      text_file(request.stem + "_zones_gridmap.geojson", "application/geo+json",
-                io::mapped_layers_geojson(mapped, {}, "gridmap", request.options.margin_sigma)));
+  list.push_back(text_file(
+      request.stem + "_zones_gridmap.geojson", "application/geo+json",
+      io::mapped_layers_geojson(mask.zones, {}, "gridmap", request.options.margin_sigma)));
   return {{"kind", kind_name(request.kind)},
           {"filter", filter_json(mask.filter)},
           {"files", std::move(list)}};
