@@ -8,7 +8,7 @@ FUZZ_DIR ?= build-fuzz
 FUZZ_SECONDS ?= 60
 SANITIZE_DIR ?= build-sanitize
 
-.PHONY: all deps configure build demo test bench format clean fuzz sanitize
+.PHONY: all deps configure build demo test bench format clean fuzz sanitize python
 
 all: build
 
@@ -16,7 +16,8 @@ deps:
 	@./scripts/install-deps.sh
 
 $(BUILD_DIR)/build.ninja: | deps
-	cmake -S . -B $(BUILD_DIR) -G Ninja -DCMAKE_BUILD_TYPE=$(BUILD_TYPE)
+	cmake -S . -B $(BUILD_DIR) -G Ninja -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) \
+	  -DPython_EXECUTABLE=/usr/bin/python3
 
 configure: deps $(BUILD_DIR)/build.ninja
 
@@ -36,6 +37,14 @@ demo: configure
 	else echo "demo: $(DATA) is missing: no real files to show"; fi
 	@echo "demo: results in $(DEMO_OUT)/align (report.html, metrics.json, model.json, overlays/)"
 	@echo "demo: browse them: ./$(BUILD_DIR)/floorgrid serve $(DEMO_OUT)/align --replay, then open http://127.0.0.1:8080/"
+
+# The Python module `floorgrid` for Debian's /usr/bin/python3: built, then installed into
+# /usr/local/lib/python3.X/dist-packages (on its path; `pip` is not needed).
+PYTHON_PREFIX ?= /usr/local
+python: configure
+	cmake --build $(BUILD_DIR) -j $(JOBS) --target floorgrid_python
+	cmake --install $(BUILD_DIR) --component python --prefix $(PYTHON_PREFIX)
+	cd / && /usr/bin/python3 -c "import floorgrid; print('import floorgrid:', floorgrid.__file__)"
 
 test: build
 	ctest --test-dir $(BUILD_DIR) --output-on-failure -j $(JOBS)

@@ -14,6 +14,8 @@ packages=(
   liblz4-dev libzstd-dev libbz2-dev libsqlite3-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
+  # the Python module (pybind11, Debian's /usr/bin/python3 and numpy) and its tests
+  pybind11-dev python3-dev python3-numpy python3-pytest
   # OpenCV calib3d: only bench/ransac_bench links it (cv::estimateAffinePartial2D comparison)
   libopencv-calib3d-dev
   # independent DXF reader used only by tests (never linked)

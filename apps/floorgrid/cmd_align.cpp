@@ -2,7 +2,6 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
-#include <chrono>
 #include <cmath>
 
 #include "apps/floorgrid/cli_util.hpp"
@@ -12,71 +11,20 @@
 #include "apps/floorgrid/progress.hpp"
 #include "apps/floorgrid/summaries.hpp"
 #include "floorgrid/core/error.hpp"
-#include "floorgrid/io/alignment_writer.hpp"
+#include "floorgrid/io/alignment_job.hpp"
 #include "floorgrid/io/atomic_file.hpp"
-#include "floorgrid/io/dataset_loader.hpp"
-#include "floorgrid/io/export_bundle.hpp"
-#include "floorgrid/io/export_inputs.hpp"
-#include "floorgrid/io/report_html.hpp"
 
 namespace floorgrid::app {
 
-namespace {
-
-/// The chosen model in other tools' terms, into DIR/exports (after the alignment was accepted:
-/// a rejected one is not worth exporting). A failure here costs the exports, not the job.
-void write_align_exports(const Alignment& a, const io::LoadedDataset& d,
-                         const std::filesystem::path& out) {
-  const PointMapping* chosen = nullptr;
-  for (const ModelAlignment& m : a.models) {
-    if (m.report.name == "auto" && m.report.model)
-      chosen = m.report.model.get();
-  }
-  if (!chosen)
-    return;
-  const auto start = std::chrono::steady_clock::now();
-  try {
-    const io::ExportFiles files =
-        io::write_exports(*chosen, a.localization.pairs, io::export_maps(d), out / "exports");
-    for (const std::string& skipped : files.skipped)
-      spdlog::info("export skipped: {}", skipped);
-    fmt::print(
-        "exports     {} files in {} ({:.2f} s; `floorgrid export --help` says what "
-        "each is)\n",
-        files.files.size(), (out / "exports").string(),
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-  } catch (const InputError& e) {
-    spdlog::warn("exports not written: {}", e.what());
-  }
-}
-
-}  // namespace
-
 void run_align(const std::string& dataset, const std::string& out, const JobOptions& options) {
   const io::OutputFolder out_folder(out);
-  const auto load_start = std::chrono::steady_clock::now();
-  const io::LoadedDataset d =
-      io::load_dataset(dataset, options.raster, options.limits, options.units);
-  report_loading(d);
-  io::AlignmentTimings timings;
-  timings.load =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - load_start).count();
-  // Without a log (or without using it) the pairs come from the maps alone.
-  const AlignmentInputs inputs{d.plan_grid,
-                               d.plan ? &*d.plan : nullptr,
-                               d.plan_wall_samples,
-                               d.gridmap,
-                               dataset_log_or_none(d, options.align.pairs_from != PairSource::maps),
-                               start_poses(d),
-                               d.manifest.floorplan_scale,
-                               warp_truth(d),
-                               d.manual_pairs ? &*d.manual_pairs : nullptr};
+  const auto job = io::load_alignment_job(dataset, options);
+  report_loading(job->dataset);
   ProgressLine progress;
-  const Alignment a = align(inputs, options.align, [&](const AlignmentProgress& p) {
+  const Alignment a = io::run_alignment_job(*job, options, [&](const AlignmentProgress& p) {
     progress.update(p.stage == "fit" ? "fit " + p.detail : p.detail, p.done, p.total);
   });
   progress.finish();
-  require_localized(a.localization.status, d);
   print_localization(a.localization, a.pair_errors, a.pairs_from);
   if (a.wall_slide)
     print_wall_slide(*a.wall_slide, static_cast<std::size_t>(a.localization.pairs.size()),
@@ -95,28 +43,28 @@ void run_align(const std::string& dataset, const std::string& out, const JobOpti
         100.0 * a.plan_match.score.in_free_space);
   }
   print_models(a);
-  const std::string name = d.manifest.display_name();
-  // From here files are written: the folder says it is incomplete until the last one is.
-  io::IncompleteMarker incomplete(out, "floorgrid align");
-  const io::AlignmentFiles files = io::write_alignment(
-      a, inputs, name, out, timings, io::floorplan_units_json(d), d.manifest.manifest_path);
-  fmt::print("\nwrote {} files to {} (metrics.json, model.json, overlays/)\n", files.files.size(),
-             files.folder.string());
-  // What was learnt is written (metrics.json holds the localization's story), but a run that
-  // made no pairs is a failure, not a result; its report still tells what happened.
-  try {
-    require_pairs(a.localization, d);
-    // Pairs from the maps alone were judged by the maps' own fitness (require_localized).
-    if (a.pairs_from != PairSource::maps)
-      require_plan_match(a.plan_match, d, options.align.localization.plan_location);
-  } catch (...) {
-    write_report(out);
-    incomplete.done();
-    throw;
+  const io::AlignmentFolder folder = io::write_alignment_folder(*job, a, options, out);
+  fmt::print("\nwrote {} files to {} (metrics.json, model.json, overlays/)\n",
+             folder.files.files.size(), folder.files.folder.string());
+  if (folder.exports) {
+    for (const std::string& skipped : folder.exports->skipped)
+      spdlog::info("export skipped: {}", skipped);
+    fmt::print(
+        "exports     {} files in {} ({:.2f} s; `floorgrid export --help` says what "
+        "each is)\n",
+        folder.exports->files.size(), (std::filesystem::path(out) / "exports").string(),
+        folder.exports_seconds);
+  } else if (!folder.exports_error.empty()) {
+    spdlog::warn("exports not written: {}", folder.exports_error);
   }
-  write_align_exports(a, d, out);
-  write_report(out);
-  incomplete.done();
+  if (folder.report) {
+    fmt::print("report      {} ({:.2f} s; open it in a browser, it needs no network)\n",
+               folder.report->string(), folder.report_seconds);
+  } else {
+    spdlog::warn("report.html not written: {}", folder.report_error);
+  }
+  if (!folder.failure.empty())
+    throw AlignmentFailure(folder.failure);
 }
 
 void add_align_command(CLI::App& root) {

@@ -16,61 +16,11 @@
 #include "floorgrid/io/pairs_csv.hpp"
 #include "floorgrid/io/system_memory.hpp"
 #include "floorgrid/io/value_json.hpp"
-#include "floorgrid/mapping/fit_with_uncertainty.hpp"
+#include "floorgrid/mapping/checked_fit.hpp"
 #include "floorgrid/mapping/mapping_factory.hpp"
 #include "floorgrid/mapping/model_selection.hpp"
-#include "floorgrid/mapping/pair_extent.hpp"
 
 namespace floorgrid::app {
-
-namespace {
-
-/// Refuses a fit whose dense matrices would not fit the memory limit, before it starts.
-void check_fit_memory(const MappingOptions& options, std::size_t pairs, double limit_gb) {
-  const double needed_gb = static_cast<double>(fit_memory_bytes(options, pairs)) / (1u << 30);
-  if (needed_gb > limit_gb) {
-    throw InputError(
-        fmt::format("model {} with {} of the pairs would need about {:.1f} GiB, "
-                    "more than the limit of {:.1f} GiB: lower --budget or raise "
-                    "--memory-limit",
-                    options.model, std::min<std::size_t>(pairs, options.common.reduction.budget),
-                    needed_gb, limit_gb),
-        {}, 0, "--budget");
-  }
-}
-
-/// Refuses a pair far outside the box of the others (a typo, a unit slip), naming its line: one
-/// such pair made every extent-based choice of a fit about it ("cv error inf", then a model
-/// `map` refuses). Dropping it quietly would fit what the user did not mean either.
-void refuse_far_pairs(const ReferencePairs& pairs, const std::vector<long>& lines,
-                      const std::string& file) {
-  const std::vector<FarPair> far = far_pairs(pairs);
-  if (far.empty())
-    return;
-  const FarPair& f = far.front();
-  const std::string others =
-      far.size() > 1 ? fmt::format(" ({} such pairs; the first named)", far.size()) : "";
-  throw InputError(
-      fmt::format("this pair's {} point lies {:.4g} m outside the box of the pairs' {} points "
-                  "({:.4g} m across, their 1st to 99th percentiles): farther than {:g} times "
-                  "that, a typo or a unit slip?{}; correct or delete it",
-                  f.side, f.distance, f.side, f.extent, FarPairOptions{}.factor, others),
-      file, lines[static_cast<std::size_t>(f.index)], f.side + (f.axis == 0 ? "_x" : "_y"));
-}
-
-/// Runs `work`; an InputError about the pairs that names no file gets the pairs file's name.
-template <typename Work>
-auto with_file(const std::string& file, const Work& work) {
-  try {
-    return work();
-  } catch (const InputError& e) {
-    if (!e.file().empty())
-      throw;
-    throw InputError(e.message(), file, e.line(), e.field());
-  }
-}
-
-}  // namespace
 
 void add_fit_command(CLI::App& root) {
   auto* cmd = root.add_subcommand("fit", "Fit a mapping model to reference pairs");
@@ -166,27 +116,13 @@ void add_fit_command(CLI::App& root) {
     refuse_overwriting_input(args->pairs, args->out, "--out");
     std::vector<long> lines;
     ReferencePairs pairs = io::read_pairs_csv(args->pairs, args->unit, &lines);
-    refuse_far_pairs(pairs, lines, args->pairs);
-    check_fit_memory(args->options, static_cast<std::size_t>(pairs.size()), args->memory_limit_gb);
     const std::filesystem::path folder = std::filesystem::path(args->out).parent_path();
     const io::OutputFolder out_folder(folder.empty() ? std::filesystem::path(".") : folder);
-    auto model = make_mapping(args->options);
-    model->set_unit(args->unit);
-    CrossValidationOptions folds = cv;
-    folds.folds = args->cv >= 2 ? args->cv : 0;
-    const FitSummary s = with_file(
-        args->pairs, [&] { return fit_with_uncertainty(*model, args->options, pairs, folds); });
-    for (const auto& w : s.warnings)
+    const CheckedFit fit = fit_checked(
+        pairs, {args->options, args->cv, args->unit, args->memory_limit_gb}, args->pairs, lines);
+    for (const auto& w : fit.summary.warnings)
       spdlog::warn("{}", w);
-    // Numerical trouble is reported, not written: `map` refuses such a model.
-    const FitSummary& fitted = model->summary();
-    if (!std::isfinite(fitted.rms_m) || (fitted.cv_error_m && !std::isfinite(*fitted.cv_error_m))) {
-      throw InputError(
-          fmt::format("the fit's rms ({}) or cross-validated error ({}) is not finite: these "
-                      "pairs do not support model {}; no model written",
-                      fitted.rms_m, fitted.cv_error_m ? *fitted.cv_error_m : 0.0, fitted.model),
-          args->pairs, 0, "pairs");
-    }
+    const auto& model = fit.model;
     io::write_model(*model, args->out);
     const FitSummary& f = model->summary();
     fmt::print("model     {}\n", f.model);

@@ -13,29 +13,6 @@
 
 namespace floorgrid::app {
 
-namespace {
-
-/// Maps one point, and its heading when `heading` is not null, in the model's pair units.
-/// (A pointer, not std::optional: GCC 12 warns falsely about optional<double> copies here.)
-io::MappedRow map_one(const PointMapping& model, const Eigen::Vector2d& point,
-                      const double* heading, bool inverse) {
-  const double unit = model.unit();
-  const Eigen::Vector2d p = point * unit;
-  io::MappedRow row;
-  row.mapped = inverse ? model.map_inverse(p) : model.map_forward(p);
-  if (row.mapped.flag != MapFlag::not_invertible) {
-    // The heading through the Jacobian at the plan point (the inverse's is solved once).
-    if (heading) {
-      row.heading = inverse ? model.heading_in_plan(row.mapped.point, *heading)
-                            : model.heading_in_grid(p, *heading);
-    }
-    row.mapped.point /= unit;
-  }
-  return row;
-}
-
-}  // namespace
-
 void add_map_command(CLI::App& root) {
   auto* cmd =
       root.add_subcommand("map", "Map points or poses through a model, plan to grid or back");
@@ -84,7 +61,7 @@ void add_map_command(CLI::App& root) {
         for (std::size_t r = begin; r < end; ++r) {
           const auto i = static_cast<Eigen::Index>(r);
           const double* heading = table.has_headings() ? &table.headings[i] : nullptr;
-          rows[r] = map_one(*model, table.points.col(i), heading, args->inverse);
+          rows[r] = io::map_row(*model, table.points.col(i), heading, args->inverse);
         }
       });
       io::write_mapped_csv(rows, table.has_headings(), args->out);
@@ -101,7 +78,7 @@ void add_map_command(CLI::App& root) {
             "POINTS");
       }
       const double* heading = v.size() == 3 ? &v[2] : nullptr;
-      const io::MappedRow row = map_one(*model, {v[0], v[1]}, heading, args->inverse);
+      const io::MappedRow row = io::map_row(*model, {v[0], v[1]}, heading, args->inverse);
       if (row.mapped.flag == MapFlag::not_invertible) {
         fmt::print("{} -> not_invertible\n", text);
         continue;

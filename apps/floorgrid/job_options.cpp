@@ -2,10 +2,6 @@
 
 #include "apps/floorgrid/cli_util.hpp"
 
-#include "floorgrid/core/error.hpp"
-#include "floorgrid/geometry/reference_pairs.hpp"
-#include "floorgrid/mapping/model_selection.hpp"
-
 namespace floorgrid::app {
 
 void add_job_options(CLI::App* cmd, const std::shared_ptr<JobArgs>& args, bool with_cv) {
@@ -29,36 +25,6 @@ void add_job_options(CLI::App* cmd, const std::shared_ptr<JobArgs>& args, bool w
                     "metres, side of the blocks of blocked folds (default 0: chosen from the "
                     "pairs)");
   }
-}
-
-JobOptions job_options(const JobArgs& args) {
-  JobOptions options;
-  if (!args.config.empty())
-    io::read_options_yaml(args.config, io::job_option_tree(options));
-  if (args.seed) {
-    options.align.localization.seed = *args.seed;
-    options.align.models.mapping.common.seed = *args.seed;
-  }
-  if (args.cv) {
-    if (*args.cv == 1)
-      throw InputError("must be 0 or at least 2", {}, 0, "--cv");
-    options.align.models.cv_folds = *args.cv;
-  }
-  CrossValidationOptions& cv = options.align.models.mapping.auto_select.cv;
-  if (args.cv_kind)
-    cv.kind = parse_cv_kind(*args.cv_kind);
-  if (args.cv_block) {
-    if (!(*args.cv_block >= 0.0 && *args.cv_block <= kMaxCoordinate))
-      throw InputError("must be 0 (chosen from the pairs) or a size in metres", {}, 0,
-                       "--cv-block");
-    cv.block_size = *args.cv_block;
-  }
-  if (args.memory_gb) {
-    if (!(*args.memory_gb > 0.0 && *args.memory_gb < 1e6))
-      throw InputError("must be a positive number of GiB", {}, 0, "--memory-limit");
-    options.limits.memory_gb = *args.memory_gb;
-  }
-  return options;
 }
 
 }  // namespace floorgrid::app

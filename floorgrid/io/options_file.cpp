@@ -371,15 +371,28 @@ std::string options_json(const OptionTree& tree) {
   return printer.root.dump(2) + "\n";
 }
 
-void read_options_yaml(const std::filesystem::path& path, const OptionTree& tree) {
-  const YAML::Node root = load_yaml_file(path);
+namespace {
+
+/// Sets the options of `tree` that the document `root` of `where` gives.
+void read_options(const YAML::Node& root, const std::string& where, const OptionTree& tree) {
   if (root.IsNull())
     return;  // an empty file changes nothing
   if (!root.IsMap())
-    throw InputError("expected a YAML mapping of options", path.string(), 1);
-  YamlReader reader(root, path.string());
+    throw InputError("expected a YAML mapping of options", where, 1);
+  YamlReader reader(root, where);
   tree(reader);
   reader.reject_unknown();
+}
+
+}  // namespace
+
+void read_options_yaml(const std::filesystem::path& path, const OptionTree& tree) {
+  read_options(load_yaml_file(path), path.string(), tree);
+}
+
+void read_options_yaml_text(const std::string& text, const std::string& source,
+                            const OptionTree& tree) {
+  read_options(load_yaml_text(text, source), source, tree);
 }
 
 }  // namespace floorgrid::io

@@ -25,4 +25,8 @@ std::string options_json(const OptionTree& tree);
 /// choices, or a group that is not a mapping.
 void read_options_yaml(const std::filesystem::path& path, const OptionTree& tree);
 
+/// The same for options given as YAML (or JSON) text; errors name `source` as the file.
+void read_options_yaml_text(const std::string& text, const std::string& source,
+                            const OptionTree& tree);
+
 }  // namespace floorgrid::io

@@ -76,4 +76,21 @@ void write_mapped_csv(const std::vector<MappedRow>& rows, bool with_headings,
   write_file_atomically(path, out);
 }
 
+MappedRow map_row(const PointMapping& model, const Eigen::Vector2d& point, const double* heading,
+                  bool inverse) {
+  const double unit = model.unit();
+  const Eigen::Vector2d p = point * unit;
+  MappedRow row;
+  row.mapped = inverse ? model.map_inverse(p) : model.map_forward(p);
+  if (row.mapped.flag != MapFlag::not_invertible) {
+    // The heading through the Jacobian at the plan point (the inverse's is solved once).
+    if (heading) {
+      row.heading = inverse ? model.heading_in_plan(row.mapped.point, *heading)
+                            : model.heading_in_grid(p, *heading);
+    }
+    row.mapped.point /= unit;
+  }
+  return row;
+}
+
 }  // namespace floorgrid::io

@@ -25,6 +25,12 @@ struct MappedRow {
   std::optional<double> heading;  ///< radians, when the input had headings
 };
 
+/// One point mapped as `map` maps it: plan to grid (or back when `inverse`), in the model's
+/// pair units (PointMapping::unit()), and its heading through the Jacobian when `heading` is not
+/// null (a pointer, not std::optional: GCC 12 warns falsely about optional<double> copies).
+MappedRow map_row(const PointMapping& model, const Eigen::Vector2d& point, const double* heading,
+                  bool inverse);
+
 /// Writes `map`'s output CSV atomically: header `x,y[,theta],std_m,nearest_pair_m,flag`, one
 /// row per input row in order; empty x, y (and theta) where not invertible, empty std_m where
 /// the model has no predictive variance.
