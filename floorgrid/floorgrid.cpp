@@ -5,6 +5,7 @@
 
 #include "floorgrid/core/parallel.hpp"
 #include "floorgrid/io/alignment_job.hpp"
+#include "floorgrid/io/atomic_file.hpp"
 #include "floorgrid/io/model_io.hpp"
 #include "floorgrid/io/options_schema.hpp"
 #include "floorgrid/io/points_csv.hpp"
@@ -71,8 +72,12 @@ void Model::set_max_error(double metres) {
 
 std::string Model::summary_json() const {
   const Value file = mapping_->to_model_file();
-  const Value* fit = file.find("fit");
-  return fit ? io::dump_json(*fit, -1) : "{}";
+  Value summary = Value::object();
+  if (const Value* fit = file.find("fit"))
+    summary = *fit;
+  if (const Value* pairs = file.find("pairs"))
+    summary["pairs"] = *pairs;
+  return io::dump_json(summary, -1);
 }
 
 void Model::map(const Eigen::Ref<const Eigen::MatrixXd>& in, bool inverse,
@@ -182,6 +187,11 @@ const Model& AlignResult::model(const std::string& name) const {
 AlignResult align(Dataset& dataset, const AlignOptions& options) {
   const JobOptions job_options = io::job_options(dataset.options());
   io::AlignmentJob& job = dataset.job();
+  // Made before the work (a folder that cannot be made fails at once), removed again when the
+  // job fails before writing into it, as `floorgrid align` does.
+  std::optional<io::OutputFolder> out_folder;
+  if (!options.out.empty())
+    out_folder.emplace(options.out);
   Alignment a = io::run_alignment_job(job, job_options, [&](const AlignmentProgress& p) {
     if (options.cancel && options.cancel->load())
       throw Cancelled("align cancelled");
@@ -190,6 +200,7 @@ AlignResult align(Dataset& dataset, const AlignOptions& options) {
   });
   AlignResult result;
   std::string failure;
+  nlohmann::json metrics;
   if (!options.out.empty()) {
     const io::AlignmentFolder folder = io::write_alignment_folder(job, a, job_options, options.out);
     for (const std::filesystem::path& file : folder.files.files)
@@ -201,10 +212,13 @@ AlignResult align(Dataset& dataset, const AlignOptions& options) {
     if (folder.report)
       result.files.push_back("report.html");
     failure = folder.failure;
+    metrics = folder.files.metrics;
+  } else {
+    metrics = io::alignment_metrics(job, a);
   }
   if (!failure.empty())
     throw AlignmentFailure(failure);
-  result.metrics_json = io::alignment_metrics(job, a).dump(1);
+  result.metrics_json = metrics.dump(1);
   result.pairs = a.localization.pairs;
   result.chosen = a.chosen;
   for (ModelAlignment& m : a.models) {

@@ -82,7 +82,8 @@ class Model {
   double max_error() const;
   /// Sets max_error() (> 0; InputError otherwise). Shared by the copies of this model.
   void set_max_error(double metres);
-  /// The fit's summary (pairs, rms, cv error, details) as the model file's `fit` JSON.
+  /// The fit's summary as JSON: the model file's `fit` (rms_m, cv_error_m, details, ...) with
+  /// its `pairs` (given, merged, used, reduction).
   std::string summary_json() const;
 
   /// Maps the columns of `in` (2 x N points or 3 x N poses, model units) plan to grid, or grid
@@ -156,8 +157,10 @@ class Dataset {
 
 /// What align() found.
 struct AlignResult {
-  ReferencePairs pairs;                  ///< the pairs every model was fitted on (metres)
-  std::string metrics_json;              ///< metrics.json's content (docs/metrics.md)
+  ReferencePairs pairs;  ///< the pairs every model was fitted on (metres)
+  /// metrics.json's content (docs/metrics.md): as written into AlignOptions::out, else the
+  /// same less the heat maps' keys and write timings.
+  std::string metrics_json;
   std::vector<std::string> model_names;  ///< the fitted models, in the order fitted
   std::vector<Model> models;             ///< one per name
   std::string chosen;                    ///< the model `auto` chose ("" without auto)

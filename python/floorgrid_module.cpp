@@ -18,6 +18,24 @@ namespace {
 
 using Points = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
+/// UTF-8 text as a Python str, bytes that are not UTF-8 replaced.
+py::str text(const std::string& utf8) {
+  PyObject* decoded =
+      PyUnicode_DecodeUTF8(utf8.data(), static_cast<Py_ssize_t>(utf8.size()), "replace");
+  if (!decoded)
+    throw py::error_already_set();
+  return py::reinterpret_steal<py::str>(decoded);
+}
+
+/// A file name as os.fsdecode gives it (undecodable bytes kept as surrogates).
+py::str path_text(const std::string& path) {
+  PyObject* decoded =
+      PyUnicode_DecodeFSDefaultAndSize(path.data(), static_cast<Py_ssize_t>(path.size()));
+  if (!decoded)
+    throw py::error_already_set();
+  return py::reinterpret_steal<py::str>(decoded);
+}
+
 /// Rows (2: points, 3: poses) of an N x 2 or N x 3 array; ValueError otherwise.
 Eigen::Index columns_of(const Points& points) {
   if (points.ndim() != 2 || (points.shape(1) != 2 && points.shape(1) != 3))
@@ -180,21 +198,27 @@ py::dict run_align(floorgrid::Dataset& dataset, const std::string& out,
 PYBIND11_MODULE(_floorgrid, m) {
   m.doc() = "floorgrid's compiled core; use the `floorgrid` package, which documents it.";
 
-  // InputError(ValueError) carries where the bad input is: file, line, field, message.
+  // InputError(ValueError) carries where the bad input is: file, line, field, message. Messages
+  // may quote the bytes of a damaged file: decoded with replacement, never a UnicodeDecodeError.
   static py::exception<floorgrid::InputError> input_error(m, "InputError", PyExc_ValueError);
-  py::register_exception<floorgrid::AlignmentFailure>(m, "AlignmentFailure", PyExc_RuntimeError);
-  py::register_exception<floorgrid::Cancelled>(m, "Cancelled", PyExc_RuntimeError);
+  static py::exception<floorgrid::AlignmentFailure> alignment_failure(m, "AlignmentFailure",
+                                                                      PyExc_RuntimeError);
+  static py::exception<floorgrid::Cancelled> cancelled(m, "Cancelled", PyExc_RuntimeError);
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p)
         std::rethrow_exception(p);
     } catch (const floorgrid::InputError& e) {
-      py::object error = py::reinterpret_borrow<py::object>(input_error)(py::str(e.what()));
-      error.attr("file") = e.file().empty() ? py::object(py::none()) : py::str(e.file());
+      py::object error = py::reinterpret_borrow<py::object>(input_error)(text(e.what()));
+      error.attr("file") = e.file().empty() ? py::object(py::none()) : path_text(e.file());
       error.attr("line") = e.line() > 0 ? py::object(py::int_(e.line())) : py::none();
-      error.attr("field") = e.field().empty() ? py::object(py::none()) : py::str(e.field());
-      error.attr("message") = py::str(e.message());
+      error.attr("field") = e.field().empty() ? py::object(py::none()) : text(e.field());
+      error.attr("message") = text(e.message());
       PyErr_SetObject(input_error.ptr(), error.ptr());
+    } catch (const floorgrid::AlignmentFailure& e) {
+      PyErr_SetObject(alignment_failure.ptr(), text(e.what()).ptr());
+    } catch (const floorgrid::Cancelled& e) {
+      PyErr_SetObject(cancelled.ptr(), text(e.what()).ptr());
     }
   });
 

@@ -275,7 +275,7 @@ AlignmentFiles write_alignment(const Alignment& a, const AlignmentInputs& in,
   const auto start = std::chrono::steady_clock::now();
   prepare_output_folder(folder);
   prepare_output_folder(folder / "overlays");
-  AlignmentFiles files{folder, {}};
+  AlignmentFiles files{folder, {}, {}};
   write_pairs_csv(a.localization.pairs, folder / "pairs.csv");
   files.files.emplace_back("pairs.csv");
   if (a.localized_pairs.size() > 0) {
@@ -334,6 +334,7 @@ AlignmentFiles write_alignment(const Alignment& a, const AlignmentInputs& in,
     metrics["models"][name]["heat_map"] = heat;
   write_file_atomically(folder / "metrics.json", metrics.dump(1) + "\n");
   files.files.emplace_back("metrics.json");
+  files.metrics = std::move(metrics);
   return files;
 }
 

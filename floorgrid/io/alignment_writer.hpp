@@ -45,6 +45,7 @@ nlohmann::json metrics_json(const Alignment& alignment, const std::string& datas
 struct AlignmentFiles {
   std::filesystem::path folder;              ///< the output folder
   std::vector<std::filesystem::path> files;  ///< every file, relative to the folder
+  nlohmann::json metrics;                    ///< metrics.json as written
 };
 
 /// Writes the main job's results into `folder` (created when missing), each file atomically:

@@ -40,6 +40,9 @@ AlignmentFailure.__doc__ = (
 Cancelled = _floorgrid.Cancelled
 Cancelled.__doc__ = "align() was cancelled (its progress callback returned False)."
 
+for _error in (InputError, AlignmentFailure, Cancelled):
+    _error.__module__ = "floorgrid"
+
 #: Names of the codes in Mapped.flags: FLAG_NAMES[code].
 FLAG_NAMES = tuple(_floorgrid.FLAG_NAMES)
 OK, UNCERTAIN, EXTRAPOLATED, OUTSIDE_HULL, NOT_INVERTIBLE = range(5)
@@ -183,7 +186,8 @@ class Model:
 
     @property
     def summary(self) -> Dict[str, Any]:
-        """The fit's summary as the model file's `fit` object (pairs, rms_m, cv error, ...)."""
+        """The fit's summary: the model file's `fit` object (rms_m, cv_error_m, details, ...)
+        with its `pairs` (given, merged, used, reduction)."""
         return _json.loads(self._impl.summary_json())
 
     def forward(self, points) -> Mapped:
@@ -271,7 +275,8 @@ class Alignment:
     Attributes:
         pairs: N x 4 array (plan_x, plan_y, grid_x, grid_y, metres): the pairs every model was
             fitted on (`pairs.csv`).
-        metrics: dict, metrics.json's content (docs/metrics.md).
+        metrics: dict, metrics.json's content (docs/metrics.md): the file written to `out`;
+            without `out`, the same less the heat maps' keys and write timings.
         models: dict name -> Model, every model fitted (`model-<name>.json`).
         chosen: the model auto chose ("" without auto).
         model: the auto model (`model.json`), or None.

@@ -11,7 +11,9 @@ import pytest
 ROOT = Path(__file__).resolve().parents[2]
 # Fewer models and folds than the defaults keep the two alignments of the session short; the CLI
 # and Python get the same file.
-FAST_OPTIONS = {"align": {"models": {"models": ["gt", "gp", "tps", "dt", "auto"]}}}
+FAST_OPTIONS = {"align": {"models": {
+    "models": ["gt", "gp", "tps", "dt", "auto"],
+    "mapping": {"auto_select": {"candidates": ["gt", "gp", "tps", "dt"]}}}}}
 
 
 def run_cli(*args, check=True):

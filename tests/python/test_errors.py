@@ -59,7 +59,8 @@ def corpus(tmp_path):
                     os.environ.get("FLOORGRID_DATA_DIR", str(ROOT.parent / "shared" / "data"))],
                    check=True, capture_output=True)
     seeds = sorted((tmp_path / "c" / "model_json").iterdir())
-    grown = ROOT / "build-fuzz" / "fuzz-corpus" / "model_json"
+    fuzz_dir = Path(os.environ.get("FLOORGRID_FUZZ_DIR", str(ROOT / "build-fuzz")))
+    grown = fuzz_dir / "fuzz-corpus" / "model_json"
     files = seeds + (sorted(grown.iterdir()) if grown.is_dir() else [])
     rng = np.random.default_rng(1)
     damaged = tmp_path / "damaged"
