@@ -14,7 +14,7 @@
 namespace floorgrid {
 
 std::string version() {
-  return "0.1.0";
+  return FLOORGRID_VERSION;
 }
 
 std::string options_json() {

@@ -30,7 +30,7 @@ namespace io {
 struct AlignmentJob;
 }  // namespace io
 
-/// The library's version ("0.1.0").
+/// The library's version (the CMake project's, "0.1.0").
 std::string version();
 
 /// Every option of `align` with its default, unit and description, as JSON (`config --dump
@@ -60,8 +60,9 @@ class Model {
   /// Reads a model file written by `fit`, `align` or save(). `max_error_m` > 0 overrides the
   /// file's bound of an `ok` point (`map --max-error`). InputError naming the file and field.
   static Model load(const std::string& path, double max_error_m = 0.0);
-  /// Fits a model to pairs (metres, or `request.unit` per unit), as `floorgrid fit` does;
-  /// InputError naming `source` and the pair's row for bad pairs.
+  /// Fits a model to pairs in metres, as `floorgrid fit` does (`request.unit` is recorded: the
+  /// model then maps points in that unit); InputError naming `source` and the pair's row for
+  /// bad pairs.
   static Model fit(const ReferencePairs& pairs, const ModelFitRequest& request = {},
                    const std::string& source = "pairs");
   /// Wraps a fitted mapping.

@@ -39,8 +39,7 @@ def workdir(tmp_path_factory):
 def office(workdir):
     """A simulated office (seed 1) with its exact truth (truth.json)."""
     out = workdir / "office"
-    if not (out / "dataset.yaml").exists():
-        run_cli("simulate", "--preset", "office", "--seed", "1", "--out", out)
+    run_cli("simulate", "--preset", "office", "--seed", "1", "--out", out)
     return out
 
 
