@@ -310,7 +310,9 @@ def align(dataset, out: Optional[str] = None, *,
         overlays/, heatmaps/, exports/, report.html); None writes nothing.
     progress: called as progress(stage, detail, done, total) on the calling thread; return
         False (or raise) to stop: align raises Cancelled (or the callback's exception).
-        Ctrl-C stops it too (KeyboardInterrupt).
+        Ctrl-C stops it too (KeyboardInterrupt). Either takes effect at the job's next progress
+        step: every scan while localizing, every model while fitting (registering the maps,
+        first, reports none for several seconds).
     config, seed, cv, cv_kind, cv_block, memory_limit, pairs_from: as the CLI's --config,
         --seed, --cv, --cv-kind, --cv-block, --memory-limit and --pairs-from.
     options: any option of config() by dotted name, {"align.models.cv_folds": 3}, or nested;
