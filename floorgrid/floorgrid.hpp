@@ -89,7 +89,9 @@ class Model {
 
   /// Maps the columns of `in` (2 x N points or 3 x N poses, model units) plan to grid, or grid
   /// to plan when `inverse`, into the caller's buffers (each of N columns or entries; `out`
-  /// has the rows of `in`), on two threads. Writes nothing else; no allocation per point.
+  /// has the rows of `in`), on two threads. Writes nothing else; no allocation per point. A
+  /// coordinate that is not finite or lies beyond 1e7 m gets no number (NaN) and the flag
+  /// not_invertible (`floorgrid map` refuses it).
   void map(const Eigen::Ref<const Eigen::MatrixXd>& in, bool inverse,
            Eigen::Ref<Eigen::MatrixXd> out, Eigen::Ref<Eigen::VectorXd> std_m,
            Eigen::Ref<Eigen::VectorXd> nearest_pair_m,

@@ -2,6 +2,8 @@
 
 import csv
 import math
+import threading
+import time
 
 import numpy as np
 import pytest
@@ -133,3 +135,29 @@ def test_bad_pairs_name_the_row_and_column():
     assert error.value.field == "cv"
     with pytest.raises(ValueError):
         floorgrid.Model.fit(pairs[:, :3])
+
+
+def test_non_physical_points_get_no_number_and_nothing_breaks():
+    model = floorgrid.Model.load(MODELS / "tps.json")
+    mapped = model.forward(np.array([[np.nan, 1.0], [1e9, 0.0], [3.0, np.inf], [3.0, 4.0]]))
+    assert mapped.flag_names[:3] == ["not_invertible"] * 3 and mapped.flag_names[3] == "ok"
+    assert np.isnan(mapped.values[:3]).all() and not np.isnan(mapped.values[3]).any()
+    assert model.forward(np.zeros((0, 2))).values.shape == (0, 2)
+
+
+def test_the_gil_is_released_while_mapping():
+    model = floorgrid.Model.load(MODELS / "tps.json")
+    points = np.random.default_rng(2).uniform(0, 10, size=(1_000_000, 2))
+    worker = threading.Thread(target=model.forward, args=(points,))
+    ticks = []
+    start = time.perf_counter()
+    worker.start()
+    while worker.is_alive():
+        ticks.append(time.perf_counter())
+    worker.join()
+    took = time.perf_counter() - start
+    # This thread kept running while the worker mapped: with the GIL held for the whole call
+    # it would stand still for about all of it.
+    longest_stop = max(np.diff([start] + ticks), default=took)
+    print(f"mapping took {took:.3f} s; this thread stood still {longest_stop:.4f} s at most")
+    assert longest_stop < 0.5 * took
