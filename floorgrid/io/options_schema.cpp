@@ -426,6 +426,12 @@ void visit(OptionVisitor& v, ConvergenceOptions& o) {
            .doc = "Consecutive scans meeting every criterion for such a filter to rejoin",
            .choices = {},
            .range = at_least(1)});
+  v.field("max_blind_scans", o.max_blind_scans,
+          {.unit = "scans",
+           .doc = "Consecutive scans the map cannot judge (they end where it knows nothing) "
+                  "after which a converged filter no longer counts as converged (0: never)",
+           .choices = {},
+           .range = at_least(0)});
 }
 
 void visit(OptionVisitor& v, HypothesisSeedingOptions& o) {

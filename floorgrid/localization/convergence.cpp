@@ -24,6 +24,8 @@ void validate(const ConvergenceOptions& o) {
   require_option(o.max_failed_scans >= 1, "convergence", "max_failed_scans", o.max_failed_scans,
                  ">= 1");
   require_option(o.rejoin_window >= 0, "convergence", "rejoin_window", o.rejoin_window, ">= 0");
+  require_option(o.max_blind_scans >= 0, "convergence", "max_blind_scans", o.max_blind_scans,
+                 ">= 0");
   require_option(o.min_rejoin_scans >= 1, "convergence", "min_rejoin_scans", o.min_rejoin_scans,
                  ">= 1");
 }
@@ -53,7 +55,10 @@ const ConvergenceCheck& ConvergenceMonitor::update(const PoseEstimate& estimate,
     // The map cannot judge this scan (it ends where the map knows nothing): the fit criterion
     // keeps its last verdict, so a converged filter stays converged on the other criteria and
     // an unconverged one cannot converge on it.
-    last_.beam_ok = previous.beam_ok;
+    last_.consecutive_blind = previous.consecutive_blind + 1;
+    // ... for at most max_blind_scans scans: longer blind, the fit is no longer vouched for.
+    last_.beam_ok = previous.beam_ok && (options_.max_blind_scans == 0 ||
+                                         last_.consecutive_blind <= options_.max_blind_scans);
     last_.criteria_met =
         last_.position_ok && last_.heading_ok && last_.scale_ok && last_.ess_ok && last_.beam_ok;
   }

@@ -107,6 +107,46 @@ TEST(Convergence, AFilterThatDroppedForAScanOrTwoRejoinsAfterOneGoodScan) {
   EXPECT_FALSE(m.update(good, 0.8, false).converged);
 }
 
+TEST(Convergence, ABlindFilterStaysConvergedForAtMostMaxBlindScans) {
+  // NaN: the map cannot judge the scan (every endpoint off its known area). By default a
+  // converged filter stays converged through any number of such scans; with max_blind_scans 4
+  // it stops after the fourth, cannot converge while blind, and needs min_converged_scans
+  // judged scans to converge again.
+  const double blind = std::numeric_limits<double>::quiet_NaN();
+  const PoseEstimate good = good_estimate();
+  ConvergenceMonitor keeps;  // max_blind_scans 0: never
+  for (int i = 0; i < 3; ++i)
+    keeps.update(good, 0.8, false);
+  ASSERT_TRUE(keeps.converged());
+  for (int i = 0; i < 50; ++i)
+    EXPECT_TRUE(keeps.update(good, blind, false).converged) << "blind scan " << i;
+
+  ConvergenceOptions o;
+  o.max_blind_scans = 4;
+  ConvergenceMonitor m(o);
+  for (int i = 0; i < 3; ++i)
+    m.update(good, 0.8, false);
+  ASSERT_TRUE(m.converged());
+  for (int i = 1; i <= 8; ++i) {
+    const ConvergenceCheck& c = m.update(good, blind, false);
+    EXPECT_EQ(c.consecutive_blind, i);
+    EXPECT_EQ(c.converged, i <= 4) << "blind scan " << i;
+  }
+  // Judged again: three passing scans to converge (the blind stretch was longer than
+  // rejoin_window).
+  EXPECT_FALSE(m.update(good, 0.8, false).converged);
+  EXPECT_EQ(m.last().consecutive_blind, 0);
+  EXPECT_FALSE(m.update(good, 0.8, false).converged);
+  EXPECT_TRUE(m.update(good, 0.8, false).converged);
+  // A short blind stretch (at most 4 scans) keeps it converged, and a judged scan between two
+  // stretches starts the count again.
+  for (int i = 0; i < 4; ++i)
+    EXPECT_TRUE(m.update(good, blind, false).converged);
+  EXPECT_TRUE(m.update(good, 0.8, false).converged);
+  for (int i = 0; i < 4; ++i)
+    EXPECT_TRUE(m.update(good, blind, false).converged);
+}
+
 TEST(Convergence, RejectsBadOptions) {
   ConvergenceOptions o;
   o.min_converged_scans = 0;
@@ -123,6 +163,9 @@ TEST(Convergence, RejectsBadOptions) {
   o = {};
   o.min_rejoin_scans = 0;
   test::expect_input_error([&] { validate(o); }, {"convergence.min_rejoin_scans", ">= 1"});
+  o = {};
+  o.max_blind_scans = -2;
+  test::expect_input_error([&] { validate(o); }, {"convergence.max_blind_scans", ">= 0"});
 }
 
 TEST(ConvergenceDivergence, BadScansInARowMeanDiverged) {
