@@ -9,6 +9,7 @@
 #include "floorgrid/io/model_io.hpp"
 #include "floorgrid/io/options_schema.hpp"
 #include "floorgrid/io/points_csv.hpp"
+#include "floorgrid/io/system_memory.hpp"
 #include "floorgrid/io/value_json.hpp"
 
 namespace floorgrid {
@@ -36,8 +37,9 @@ Model Model::load(const std::string& path, double max_error_m) {
   return Model(std::move(mapping));
 }
 
-Model Model::fit(const ReferencePairs& pairs, const ModelFitRequest& request,
-                 const std::string& source) {
+Model Model::fit(const ReferencePairs& pairs, ModelFitRequest request, const std::string& source) {
+  if (!(request.memory_limit_gb > 0.0))
+    request.memory_limit_gb = io::default_memory_limit_gb();  // as `floorgrid fit`
   return Model(fit_checked(pairs, request, source).model);
 }
 

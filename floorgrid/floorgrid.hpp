@@ -62,8 +62,9 @@ class Model {
   static Model load(const std::string& path, double max_error_m = 0.0);
   /// Fits a model to pairs in metres, as `floorgrid fit` does (`request.unit` is recorded: the
   /// model then maps points in that unit); InputError naming `source` and the pair's row for
-  /// bad pairs.
-  static Model fit(const ReferencePairs& pairs, const ModelFitRequest& request = {},
+  /// bad pairs. A `request.memory_limit_gb` of 0 is `fit`'s default: half of this machine's
+  /// memory.
+  static Model fit(const ReferencePairs& pairs, ModelFitRequest request = {},
                    const std::string& source = "pairs");
   /// Wraps a fitted mapping.
   explicit Model(std::shared_ptr<PointMapping> mapping);

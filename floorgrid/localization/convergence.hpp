@@ -34,7 +34,7 @@ struct ConvergenceOptions {
   /// for 37-63 scans in a turn came back up to 19 m off on 8 of 20 seeds while counted
   /// converged; 10 for both filters left 2 of 13 runs with such a stretch, but the plan
   /// filter's own look-alike corridors kept the answer seed-dependent, and the robot's honest
-  /// excursions off the map (12 and 48 scans) cost up to 8% of the converged scans.
+  /// excursions off the map (12 and 48 scans) cost up to 10 points of the converged share.
   int max_blind_scans = 0;
 };
 

@@ -144,7 +144,8 @@ class Model:
         seed: randomness of RANSAC and subsampling; budget: pairs kept by gp, gpgt, tps, dt.
         extrapolation: metres from every pair beyond which a point is flagged extrapolated.
         max_error: metres, the 95% bound of an `ok` point; inlier_threshold: metres (gt
-            models; default automatic); memory_limit: GiB a fit may use.
+            models; default automatic); memory_limit: GiB a fit may use (default: half of
+            this machine's memory, as `floorgrid fit`).
         Raises InputError for bad pairs (naming the row and column) or options."""
         impl = _floorgrid.Model.fit(
             _np.asarray(pairs, dtype=_np.float64), kind, cv, cv_kind, cv_block, unit, seed,
