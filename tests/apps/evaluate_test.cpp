@@ -19,17 +19,16 @@ using test::read_json;
 using test::run_floorgrid;
 using test::TempDir;
 
-/// One simulated office aligned, shared by the tests (align takes a while).
+/// One simulated office aligned, shared by the tests (align takes a while): made once for
+/// every test process (test::shared_office_alignment) and copied, since the tests write beside it.
 class EvaluateCommand : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     dir_ = new TempDir();
-    const auto sim =
-        run_floorgrid("simulate --preset office --seed 2 --out " + quoted(*dir_ / "data"));
-    ASSERT_EQ(sim.status, 0) << sim.err;
-    const auto run =
-        run_floorgrid("align " + quoted(*dir_ / "data") + " --out " + quoted(*dir_ / "align"));
-    ASSERT_EQ(run.status, 0) << run.out << run.err;
+    const fs::path shared = test::shared_office_alignment();
+    ASSERT_TRUE(fs::exists(shared / "align" / "metrics.json")) << shared;
+    fs::copy(shared / "data", *dir_ / "data", fs::copy_options::recursive);
+    fs::copy(shared / "align", *dir_ / "align", fs::copy_options::recursive);
   }
   static void TearDownTestSuite() {
     delete dir_;

@@ -3,20 +3,23 @@
 # `floorgrid serve` on a free port, and web/test/viewer.test.mjs, then
 # web/test/layers.test.mjs (zones and waypoints), drive Debian's chromium against it.
 #
-#   web/test/run_browser_tests.sh FLOORGRID NODE SOURCE_DIR WORK_DIR
+#   web/test/run_browser_tests.sh FLOORGRID NODE SOURCE_DIR WORK_DIR [CACHE_DIR]
 #
+# With CACHE_DIR the office is the one the other tests share (tests/support/shared_office.sh),
+# copied into WORK_DIR: the viewer may write into its folder.
 # Exit 0: passed; 77: skipped (no chromium, or web/node_modules not installed); else failed.
 # Screenshots go to WORK_DIR/screenshots.
 set -euo pipefail
 
-if [[ $# -ne 4 ]]; then
-  echo "usage: $0 FLOORGRID NODE SOURCE_DIR WORK_DIR" >&2
+if [[ $# -ne 4 && $# -ne 5 ]]; then
+  echo "usage: $0 FLOORGRID NODE SOURCE_DIR WORK_DIR [CACHE_DIR]" >&2
   exit 2
 fi
 floorgrid=$1
 node=$2
 source=$3
 work=$4
+cache=${5:-}
 readonly SKIP=77
 
 if [[ ! -x /usr/lib/chromium/chromium && ! -x /usr/bin/chromium ]]; then
@@ -32,8 +35,14 @@ done
 
 rm -rf "$work/data" "$work/align" "$work/screenshots"
 mkdir -p "$work"
-"$floorgrid" simulate --preset office --seed 2 --out "$work/data" >/dev/null
-"$floorgrid" align "$work/data" --out "$work/align" >/dev/null
+if [[ -n $cache ]]; then
+  shared=$("$source/tests/support/shared_office.sh" "$floorgrid" "$cache")
+  cp -r "$shared/data" "$work/data"
+  cp -r "$shared/align" "$work/align"
+else
+  "$floorgrid" simulate --preset office --seed 2 --out "$work/data" >/dev/null
+  "$floorgrid" align "$work/data" --out "$work/align" >/dev/null
+fi
 
 server_pid=
 stop_server() {
