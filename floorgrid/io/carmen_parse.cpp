@@ -18,7 +18,7 @@ bool is_space(char c) {
   return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v';
 }
 
-std::string quoted(std::string_view token) {
+std::string in_quotes(std::string_view token) {
   constexpr std::size_t shown = 40;
   std::string text(token.substr(0, shown));
   if (token.size() > shown)
@@ -84,7 +84,7 @@ double FieldCursor::number(std::string_view field) {
   const std::string_view token = next_token(field);
   double value = 0.0;
   if (!parse_number(token, value))
-    fail("not a number: " + quoted(token), field);
+    fail("not a number: " + in_quotes(token), field);
   return value;
 }
 
@@ -110,7 +110,7 @@ double FieldCursor::indexed_number(std::string_view prefix, std::size_t index) {
   const std::string_view token = text_.substr(start, position_ - start);
   double value = 0.0;
   if (!parse_number(token, value)) {
-    fail("not a number: " + quoted(token), std::string(prefix) + " " + std::to_string(index));
+    fail("not a number: " + in_quotes(token), std::string(prefix) + " " + std::to_string(index));
   }
   return value;
 }
@@ -124,11 +124,11 @@ long FieldCursor::integer(std::string_view field, long min, long max) {
   long value = 0;
   const auto [end, error] = std::from_chars(first, last, value);
   if (end != last || error == std::errc::invalid_argument || first == last) {
-    fail("not an integer: " + quoted(token), field);
+    fail("not an integer: " + in_quotes(token), field);
   }
   if (error == std::errc::result_out_of_range || value < min || value > max) {
     fail("must be an integer from " + std::to_string(min) + " to " + std::to_string(max) +
-             " (got " + quoted(token) + ")",
+             " (got " + in_quotes(token) + ")",
          field);
   }
   return value;

@@ -71,7 +71,7 @@ std::string pose_text(const Pose2& p) {
 }
 
 /// Quotes a string for YAML when it could be misread.
-std::string quoted(const std::string& s) {
+std::string yaml_quoted(const std::string& s) {
   std::string out = "\"";
   for (char c : s) {
     if (c == '"' || c == '\\')
@@ -84,7 +84,7 @@ std::string quoted(const std::string& s) {
 std::string string_list(const std::vector<std::string>& items) {
   std::string out = "[";
   for (std::size_t i = 0; i < items.size(); ++i)
-    out += (i ? ", " : "") + quoted(items[i]);
+    out += (i ? ", " : "") + yaml_quoted(items[i]);
   return out + "]";
 }
 
@@ -201,8 +201,8 @@ void write_manifest(const DatasetManifest& m) {
   const std::filesystem::path folder = m.manifest_path.parent_path();
   std::string out = "# floorgrid dataset manifest\n";
   if (!m.name.empty())
-    out += "name: " + quoted(m.name) + "\n";
-  out += "floorplan: " + quoted(relative_to(m.floorplan, folder)) + "\n";
+    out += "name: " + yaml_quoted(m.name) + "\n";
+  out += "floorplan: " + yaml_quoted(relative_to(m.floorplan, folder)) + "\n";
   if (m.floorplan_resolution)
     out += fmt::format("floorplan_resolution: {}\n", *m.floorplan_resolution);
   if (m.floorplan_origin)
@@ -215,22 +215,22 @@ void write_manifest(const DatasetManifest& m) {
   if (!m.floorplan_layers_exclude.empty()) {
     out += "floorplan_layers_exclude: " + string_list(m.floorplan_layers_exclude) + "\n";
   }
-  out += "gridmap: " + quoted(relative_to(m.gridmap, folder)) + "\n";
+  out += "gridmap: " + yaml_quoted(relative_to(m.gridmap, folder)) + "\n";
   if (m.gridmap_resolution)
     out += fmt::format("gridmap_resolution: {}\n", *m.gridmap_resolution);
   if (m.gridmap_origin)
     out += "gridmap_origin: " + pose_text(*m.gridmap_origin) + "\n";
   if (m.log)
-    out += "log: " + quoted(relative_to(*m.log, folder)) + "\n";
+    out += "log: " + yaml_quoted(relative_to(*m.log, folder)) + "\n";
   const auto map_line = [&](const char* key, const char* a, const std::optional<std::string>& va,
                             const char* b, const std::optional<std::string>& vb) {
     if (!va && !vb)
       return;
     out += fmt::format("{}: {{", key);
     if (va)
-      out += fmt::format("{}: {}", a, quoted(*va));
+      out += fmt::format("{}: {}", a, yaml_quoted(*va));
     if (vb)
-      out += fmt::format("{}{}: {}", va ? ", " : "", b, quoted(*vb));
+      out += fmt::format("{}{}: {}", va ? ", " : "", b, yaml_quoted(*vb));
     out += "}\n";
   };
   map_line("log_topics", "scan", m.log_scan_topic, "odom", m.log_odom_topic);
@@ -263,10 +263,10 @@ void write_manifest(const DatasetManifest& m) {
   if (m.truth.manual_pairs || m.truth.warp) {
     out += "truth:\n";
     if (m.truth.manual_pairs) {
-      out += "  manual_pairs: " + quoted(relative_to(*m.truth.manual_pairs, folder)) + "\n";
+      out += "  manual_pairs: " + yaml_quoted(relative_to(*m.truth.manual_pairs, folder)) + "\n";
     }
     if (m.truth.warp)
-      out += "  warp: " + quoted(relative_to(*m.truth.warp, folder)) + "\n";
+      out += "  warp: " + yaml_quoted(relative_to(*m.truth.warp, folder)) + "\n";
   }
   write_file_atomically(m.manifest_path, out);
 }

@@ -22,7 +22,7 @@ std::string_view trim(std::string_view s) {
 }
 
 /// Shows a value in a message without flooding it with garbage bytes.
-std::string quoted(std::string_view value) {
+std::string in_quotes(std::string_view value) {
   std::string out = "\"";
   for (const char c : value.substr(0, 40)) {
     const auto u = static_cast<unsigned char>(c);
@@ -88,7 +88,7 @@ std::vector<DxfGroup> tokenize_dxf(std::string_view text) {
     const auto [end, ec] =
         std::from_chars(code_text.data(), code_text.data() + code_text.size(), group.code);
     if (code_text.empty() || ec != std::errc() || end != code_text.data() + code_text.size()) {
-      throw InputError("expected a DXF group code (an integer), got " + quoted(code_line), {},
+      throw InputError("expected a DXF group code (an integer), got " + in_quotes(code_line), {},
                        line);
     }
     if (pos >= text.size()) {
@@ -110,7 +110,7 @@ double group_double(const DxfGroup& group) {
   double value = 0.0;
   if (!parse_double(group.value, value)) {
     throw InputError(
-        "group code " + std::to_string(group.code) + " needs a number, got " + quoted(group.value),
+        "group code " + std::to_string(group.code) + " needs a number, got " + in_quotes(group.value),
         {}, group.line + 1);
   }
   return value;
@@ -121,7 +121,7 @@ long group_integer(const DxfGroup& group) {
   if (!parse_double(group.value, value) || value != std::floor(value) ||
       std::abs(value) > static_cast<double>(std::numeric_limits<int>::max())) {
     throw InputError("group code " + std::to_string(group.code) + " needs an integer, got " +
-                         quoted(group.value),
+                         in_quotes(group.value),
                      {}, group.line + 1);
   }
   return static_cast<long>(value);
