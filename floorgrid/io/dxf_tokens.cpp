@@ -109,9 +109,9 @@ std::vector<DxfGroup> tokenize_dxf(std::string_view text) {
 double group_double(const DxfGroup& group) {
   double value = 0.0;
   if (!parse_double(group.value, value)) {
-    throw InputError(
-        "group code " + std::to_string(group.code) + " needs a number, got " + in_quotes(group.value),
-        {}, group.line + 1);
+    throw InputError("group code " + std::to_string(group.code) + " needs a number, got " +
+                         in_quotes(group.value),
+                     {}, group.line + 1);
   }
   return value;
 }
