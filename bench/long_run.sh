@@ -2,7 +2,8 @@
 # An hour of driving (issue 34): the warehouse preset simulated for each run length
 # (`simulate --duration`, 15 scans a second) and aligned. One row per run length, printed as soon
 # as its run is done: scans, wall time and peak memory of simulate and of align
-# (/usr/bin/time -f '%e %M'), align's stages (metrics.json `timings_s`), its pairs and the best
+# (/usr/bin/time -f '%e %M', and the CPU seconds: on a shared machine the wall clock waits for
+# cores), align's stages (metrics.json `timings_s`), its pairs and the best
 # model's mean error against the truth; then each column's growth from the shortest run to the
 # longest (the issue's bars: align on 60 minutes within 240 s and 4 GB, and within 4.8x the
 # 15-minute run's time, every stage linear or better in the scans).
@@ -27,9 +28,9 @@ stages="load maps_alignment global_localization scale_search localize pairs wall
 
 printf 'work folder %s, preset %s seed %s, run lengths (min): %s\n' "$work" "$preset" "$seed" \
   "$minutes_list"
-header="minutes scans sim_s sim_MB align_s align_MB $stages pairs best_mean_m rc"
+header="minutes scans sim_s sim_MB align_s align_cpu_s align_MB $stages pairs best_mean_m rc"
 printf '%s\n' "$header" | tr ' ' '\t' > "$summary"
-printf '%-7s %7s %6s %6s %7s %7s' minutes scans sim_s sim_MB align_s align_MB
+printf '%-7s %7s %6s %6s %7s %11s %8s' minutes scans sim_s sim_MB align_s align_cpu_s align_MB
 for s in $stages; do printf ' %*s' $(( ${#s} > 6 ? ${#s} : 6 )) "$s"; done
 printf ' %8s %11s %3s\n' pairs best_mean_m rc
 
@@ -38,28 +39,29 @@ for minutes in $minutes_list; do
   mkdir -p "$run"
   seconds=$(( minutes * 60 ))
   if [ -z "${REUSE:-}" ] || [ ! -f "$run/dataset/dataset.yaml" ]; then
-    /usr/bin/time -f '%e %M' -o "$run/simulate.time" "$bin" simulate --preset "$preset" \
+    /usr/bin/time -f '%e %M %U %S' -o "$run/simulate.time" "$bin" simulate --preset "$preset" \
       --seed "$seed" --duration "$seconds" --out "$run/dataset" > "$run/simulate.log" 2>&1 || {
       echo "$minutes min: simulate failed (see $run/simulate.log)"
       continue
     }
   fi
-  /usr/bin/time -f '%e %M' -o "$run/align.time" "$bin" align "$run/dataset" \
+  /usr/bin/time -f '%e %M %U %S' -o "$run/align.time" "$bin" align "$run/dataset" \
     --out "$run/aligned" > "$run/align.log" 2>&1
   rc=$?
   "$py" - "$run" "$minutes" "$rc" "$stages" >> "$summary" <<'EOF'
 import json, os, sys
 run, minutes, rc, stages = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4].split()
 def time_file(name):
-    # /usr/bin/time writes "seconds kilobytes" as its last line (after any message of its own).
+    # /usr/bin/time writes "wall kilobytes user system" as its last line (after any message of
+    # its own).
     try:
         with open(os.path.join(run, name)) as f:
             last = f.read().strip().splitlines()[-1].split()
-        return float(last[0]), float(last[1]) / 1024.0
+        return float(last[0]), float(last[1]) / 1024.0, float(last[2]) + float(last[3])
     except (OSError, IndexError, ValueError):
-        return float("nan"), float("nan")
-sim_s, sim_mb = time_file("simulate.time")
-align_s, align_mb = time_file("align.time")
+        return float("nan"), float("nan"), float("nan")
+sim_s, sim_mb, _ = time_file("simulate.time")
+align_s, align_mb, align_cpu = time_file("align.time")
 scans = "nan"
 try:
     with open(os.path.join(run, "dataset", "truth.json")) as f:
@@ -79,7 +81,8 @@ for m in metrics.get("models", {}).values():
     mean = m.get("mean_error_m") if isinstance(m, dict) else None
     if isinstance(mean, (int, float)) and not (best <= mean):
         best = mean
-row = [minutes, scans, f"{sim_s:.1f}", f"{sim_mb:.0f}", f"{align_s:.1f}", f"{align_mb:.0f}"]
+row = [minutes, scans, f"{sim_s:.1f}", f"{sim_mb:.0f}", f"{align_s:.1f}", f"{align_cpu:.1f}",
+       f"{align_mb:.0f}"]
 row += [f"{timings.get(s, float('nan')):.1f}" for s in stages]
 row += [pairs, f"{best:.4f}", rc]
 print("\t".join(str(v) for v in row))
@@ -88,7 +91,7 @@ EOF
   tail -n 1 "$summary" | "$py" -c '
 import sys
 row = sys.stdin.read().rstrip("\n").split("\t")
-widths = [7, 7, 6, 6, 7, 7] + [max(len(s), 6) for s in sys.argv[1].split()] + [8, 11, 3]
+widths = [7, 7, 6, 6, 7, 11, 8] + [max(len(s), 6) for s in sys.argv[1].split()] + [8, 11, 3]
 print(" ".join((v.ljust(w) if i == 0 else v.rjust(w)) for i, (v, w) in enumerate(zip(row, widths))))
 ' "$stages"
 done
