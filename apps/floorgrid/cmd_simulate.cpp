@@ -1,10 +1,9 @@
 // `floorgrid simulate --preset P [--duration SECONDS] --seed N --out DIR [--preview]`: a synthetic
 // dataset with exact ground truth; `floorgrid simulate --from-log LOG [--plan-scale S] [--bend M]
-// [--rotation DEG]
-// [--plan-format png|dxf] [--dxf-units U] [--dxf-header H] --seed N --out DIR`: a semi-real one
-// from a corrected real log; `floorgrid simulate --from-plan PLAN [--resolution R] [--origin
-// x,y,yaw] [--plan-scale S] [--bend M] [--rotation DEG] [--drawing-errors none|some] --seed N
-// --out DIR`: a world built from a real drawing, a run through it and its SLAM-like map.
+// [--rotation DEG] [--plan-format png|dxf] [--dxf-units U] [--dxf-header H] --seed N --out DIR`:
+// a semi-real one from a corrected real log; `floorgrid simulate --from-plan PLAN [--resolution R]
+// [--origin x,y,yaw] [--plan-scale S] [--bend M] [--rotation DEG] [--drawing-errors none|some]
+// --seed N --out DIR`: a world built from a real drawing, a run through it and its SLAM-like map.
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 

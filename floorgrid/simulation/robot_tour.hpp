@@ -31,8 +31,8 @@ std::vector<TimedPose> drive_tour(const std::vector<Eigen::Vector2d>& waypoints,
 
 /// Drives the tour over and over, forth and then back (turning on the spot at either end),
 /// until `duration` seconds have passed: the poses of drive_tour over that longer tour, up to
-/// start_time + duration (the last pose within a tick of it). A duration not above zero, or
-/// fewer than two distinct waypoints, gives drive_tour's poses unchanged.
+/// start_time + duration (the last pose within half a tick of it). A duration not above zero
+/// (or NaN), or a tour that takes no time (one waypoint), gives drive_tour's poses unchanged.
 std::vector<TimedPose> drive_tour_for(const std::vector<Eigen::Vector2d>& waypoints,
                                       double duration, const TourOptions& options = {});
 
