@@ -1,9 +1,9 @@
-// `floorgrid simulate --preset P --seed N --out DIR [--preview]`: a synthetic dataset with exact
-// ground truth; `floorgrid simulate --from-log LOG [--plan-scale S] [--bend M] [--rotation DEG]
-// [--plan-format png|dxf] [--dxf-units U] [--dxf-header H] --seed N --out DIR`: a semi-real one
-// from a corrected real log; `floorgrid simulate --from-plan PLAN [--resolution R] [--origin
-// x,y,yaw] [--plan-scale S] [--bend M] [--rotation DEG] [--drawing-errors none|some] --seed N
-// --out DIR`: a world built from a real drawing, a run through it and its SLAM-like map.
+// `floorgrid simulate --preset P [--duration SECONDS] --seed N --out DIR [--preview]`: a synthetic
+// dataset with exact ground truth; `floorgrid simulate --from-log LOG [--plan-scale S] [--bend M]
+// [--rotation DEG] [--plan-format png|dxf] [--dxf-units U] [--dxf-header H] --seed N --out DIR`:
+// a semi-real one from a corrected real log; `floorgrid simulate --from-plan PLAN [--resolution R]
+// [--origin x,y,yaw] [--plan-scale S] [--bend M] [--rotation DEG] [--drawing-errors none|some]
+// --seed N --out DIR`: a world built from a real drawing, a run through it and its SLAM-like map.
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
@@ -212,6 +212,7 @@ void add_simulate_command(CLI::App& root) {
   auto* cmd = root.add_subcommand("simulate", "A synthetic dataset with exact ground truth");
   struct Args {
     std::string preset = "office";
+    std::optional<double> duration;
     std::uint64_t seed = 1;
     std::string out;
     bool preview = false;
@@ -231,6 +232,13 @@ void add_simulate_command(CLI::App& root) {
     presets += (presets.empty() ? "" : ", ") + n;
   auto* preset = cmd->add_option("--preset", args->preset, "building preset: " + presets)
                      ->capture_default_str();
+  const SimulationOptions simulation_defaults;
+  auto* duration =
+      cmd->add_option("--duration", args->duration,
+                      fmt::format("seconds of driving (at most {:g}): the preset's tour driven "
+                                  "over and over, forth and back, until then, {:g} scans a "
+                                  "second; default: the tour once, 5 scans a second",
+                                  simulation_defaults.max_duration, simulation_defaults.scan_rate));
   cmd->add_option("--seed", args->seed, "random seed: the same seed gives the same dataset")
       ->check(seed_check())
       ->capture_default_str();
@@ -244,7 +252,8 @@ void add_simulate_command(CLI::App& root) {
              "a corrected log (CARMEN, .gz allowed, or a ROS bag/MCAP/rosbag2 whose odometry "
              "is the corrected trajectory): make a semi-real dataset "
              "from it instead of a preset")
-          ->excludes(preset);
+          ->excludes(preset)
+          ->excludes(duration);
   auto* from_plan =
       cmd->add_option("--from-plan", args->from_plan,
                       "a real drawing (a map YAML, a PNG/PGM image with --resolution, or a "
@@ -252,6 +261,7 @@ void add_simulate_command(CLI::App& root) {
                       "columns, furniture the drawing lacks), drive a robot through it and map "
                       "it with drift")
           ->excludes(preset)
+          ->excludes(duration)
           ->excludes(from_log);
   const auto needs_log = [&](CLI::Option* option) { option->needs(from_log); };
   const auto needs_plan = [&](CLI::Option* option) { option->needs(from_plan); };
@@ -315,11 +325,19 @@ void add_simulate_command(CLI::App& root) {
         throw InputError("needs --from-log or --from-plan", "", 0, option->get_name());
     }
     const auto start = std::chrono::steady_clock::now();
-    // Fail on a bad preset or an unusable folder before the work, not after.
+    // Fail on a bad preset, duration or an unusable folder before the work, not after.
     simulation_preset(args->preset);
+    SimulationOptions options;
+    options.duration = args->duration;
+    try {
+      validate(options);
+    } catch (const InputError& e) {
+      throw InputError(e.message(), "", 0, "--" + e.field());
+    }
     const io::OutputFolder out_folder(args->out);
-    spdlog::info("simulating preset {} seed {}", args->preset, args->seed);
-    const SimulatedDataset d = simulate(args->preset, args->seed);
+    spdlog::info("simulating preset {} seed {}{}", args->preset, args->seed,
+                 args->duration ? fmt::format(" for {:g} s", *args->duration) : "");
+    const SimulatedDataset d = simulate(args->preset, args->seed, options);
     const auto files = io::write_simulated_dataset(d, args->out, args->preview);
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

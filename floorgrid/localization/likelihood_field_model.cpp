@@ -20,8 +20,13 @@ namespace floorgrid {
 namespace {
 
 // Below this many particle-beam evaluations per thread, starting a thread costs more than it
-// saves (a thread start is ~20 us, an evaluation ~1 ns).
-constexpr std::size_t kMinEvaluationsPerThread = 50'000;
+// saves. A thread start is ~20 us on an idle machine and an evaluation ~1 ns, but on a shared
+// one the started thread waits for a core: a tracking filter's scan (2,000 particles x 60
+// beams, 0.1 ms) started one per scan, and `align`'s tracking passes over an hour of driving
+// (54,000 scans) spent most of their wall clock waiting for them (60 s of 15 minutes' run for
+// 3 s of CPU). Global localization (50,000 particles) still takes two. The scores do not
+// depend on the split.
+constexpr std::size_t kMinEvaluationsPerThread = 500'000;
 
 }  // namespace
 

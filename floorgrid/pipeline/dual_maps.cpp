@@ -67,10 +67,15 @@ DualMaps::DualMaps(const DualLocalizerInputs& inputs, const DualLocalizerOptions
       grid_model_(gridmap_, options.grid.likelihood, options.grid.model, options.beam),
       plan_walls_(plan_wall_field(inputs, *plan_, visible_, options.walls)),
       grid_walls_(gridmap_, options.walls),
-      plan_observations_(prepare_observations(inputs.log, options.plan.observation)),
-      grid_observations_(prepare_observations(inputs.log, options.grid.observation)) {
+      log_(inputs.log),
+      plan_observation_(options.plan.observation),
+      grid_observation_(options.grid.observation) {
   if (options.plan_beam_consistency)
     plan_rays_.emplace(*plan_);
+}
+
+ScanObservation DualMaps::grid_observation(std::size_t i) const {
+  return make_observation(log_.scans[i], grid_observation_);
 }
 
 std::vector<ScanObservation> prepare_observations(const RobotLog& log,

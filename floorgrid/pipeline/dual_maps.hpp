@@ -33,8 +33,8 @@ class MapModel {
 };
 
 /// Both maps prepared for the dual localization: the plan as a robot inside sees it, each
-/// map's observation model, walls to match scans onto, and every scan prepared for each
-/// filter. Built once, read by every step.
+/// map's observation model, walls to match scans onto, and how each filter prepares a scan.
+/// Built once, read by every step.
 class DualMaps {
  public:
   /// Prepares `inputs`' maps with `options`; what it decides goes to `notes`.
@@ -51,10 +51,13 @@ class DualMaps {
   const WallField& grid_walls() const { return grid_walls_; }  ///< the gridmap's walls
   /// The plan's ray caster for beam-consistent matching, or null when not used.
   const GridRayCaster* plan_rays() const { return plan_rays_ ? &*plan_rays_ : nullptr; }
-  /// Scan i prepared for the plan filter's model.
-  const std::vector<ScanObservation>& plan_observations() const { return plan_observations_; }
+  /// How a scan is prepared for the plan filter's model (each runner prepares its scans as it
+  /// steps: a long log's prepared scans are not all held).
+  const ObservationOptions& plan_observation_options() const { return plan_observation_; }
+  /// How a scan is prepared for the gridmap filter's model.
+  const ObservationOptions& grid_observation_options() const { return grid_observation_; }
   /// Scan i prepared for the gridmap filter's model.
-  const std::vector<ScanObservation>& grid_observations() const { return grid_observations_; }
+  ScanObservation grid_observation(std::size_t i) const;
 
  private:
   VisibleWalls visible_;
@@ -63,7 +66,8 @@ class DualMaps {
   MapModel plan_model_, grid_model_;
   WallField plan_walls_, grid_walls_;
   std::optional<GridRayCaster> plan_rays_;
-  std::vector<ScanObservation> plan_observations_, grid_observations_;
+  const RobotLog& log_;
+  ObservationOptions plan_observation_, grid_observation_;
 };
 
 /// Every scan of `log` prepared with `options`.

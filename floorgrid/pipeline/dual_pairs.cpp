@@ -19,13 +19,21 @@ bool usable_for_pairs(const ScanRecord& r, bool refine) {
 double refit_plan_scale(DualLocalization& result, const RobotLog& log, const WallField& plan_walls,
                         const FilterRunnerOptions& plan_runner, const ScaleRefitOptions& options,
                         double scale, const GridRayCaster* plan_caster) {
+  // Each scan reduced to its beams consistent with the plan at its pose as it is prepared
+  // (what fit_scale does with a caster first): a long run's full observations and their
+  // reduced copies are never held at once.
   std::vector<ScanObservation> points;
   std::vector<Pose2> poses;
   std::vector<std::size_t> which;
   for (const ScanRecord& r : result.scans) {
     if (!usable_for_pairs(r, true))
       continue;
-    points.push_back(make_observation(log.scans[r.scan], plan_runner.match_observation));
+    ScanObservation observation =
+        make_observation(log.scans[r.scan], plan_runner.match_observation);
+    if (plan_caster)
+      observation = beam_consistent(observation, *plan_caster, r.plan.match.pose, scale,
+                                    plan_runner.beam_tolerance);
+    points.push_back(std::move(observation));
     poses.push_back(r.plan.match.pose);
     which.push_back(r.scan);
   }
@@ -37,9 +45,8 @@ double refit_plan_scale(DualLocalization& result, const RobotLog& log, const Wal
   views.reserve(points.size());
   for (const ScanObservation& p : points)
     views.push_back(&p);
-  const ScaleFit fit =
-      fit_scale(plan_walls, views, poses, scale, plan_runner.match, options.max_iterations,
-                options.jackknife_blocks, plan_caster, plan_runner.beam_tolerance);
+  const ScaleFit fit = fit_scale(plan_walls, views, poses, scale, plan_runner.match,
+                                 options.max_iterations, options.jackknife_blocks);
   result.plan_scale_std = fit.scale_std;
   for (std::size_t k = 0; k < which.size(); ++k)
     result.scans[which[k]].plan.match.pose = fit.poses[k];

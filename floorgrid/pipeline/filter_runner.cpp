@@ -42,10 +42,31 @@ FilterRunner::FilterRunner(ParticleFilter filter, const ObservationModel& model,
       model_(model),
       walls_(walls),
       log_(log),
-      observations_(observations),
+      observations_(&observations),
       options_(options),
       caster_(caster) {
   validate(options_.match);
+}
+
+FilterRunner::FilterRunner(ParticleFilter filter, const ObservationModel& model,
+                           const WallField& walls, const RobotLog& log,
+                           const ObservationOptions& observation,
+                           const FilterRunnerOptions& options, const GridRayCaster* caster)
+    : filter_(std::move(filter)),
+      model_(model),
+      walls_(walls),
+      log_(log),
+      observation_(observation),
+      options_(options),
+      caster_(caster) {
+  validate(options_.match);
+}
+
+const ScanObservation& FilterRunner::observation(std::size_t i) {
+  if (observations_)
+    return (*observations_)[i];
+  prepared_ = make_observation(log_.scans[i], observation_);
+  return prepared_;
 }
 
 std::optional<OdometryMotion> FilterRunner::guided_motion(std::size_t from, std::size_t to) const {
@@ -95,6 +116,7 @@ FilterRecord FilterRunner::step(std::size_t i) {
   if (update) {
     moved_ = turned_ = 0.0;
     const bool tracking = filter_.converged() && filter_.state() == FilterState::tracking;
+    const ScanObservation& scan = observation(i);
     FilterStatus status;
     if (options_.improved_proposal && tracking) {
       predict();
@@ -102,15 +124,14 @@ FilterRecord FilterRunner::step(std::size_t i) {
       proposal =
           apply_proposal(filter_, walls_, points, options_.match, caster_, options_.beam_tolerance);
       corrections_ += proposal->ok() || proposal->failure == ScanMatchFailure::degenerate;
-      status = filter_.step(OdometryMotion{}, observations_[i], model_, options_.threads);
+      status = filter_.step(OdometryMotion{}, scan, model_, options_.threads);
     } else {
       // A guided motion is predicted with its own noise first; the step then only weighs.
       if (guided)
         predict();
-      status = filter_.step(guided ? OdometryMotion{} : motion, observations_[i], model_,
-                            options_.threads);
+      status = filter_.step(guided ? OdometryMotion{} : motion, scan, model_, options_.threads);
     }
-    evaluations_ += filter_.particles().size() * observations_[i].size();
+    evaluations_ += filter_.particles().size() * scan.size();
     record.updated = true;
     record.diverged = status.state == FilterState::diverged;
   } else {

@@ -88,6 +88,12 @@ class FilterRunner {
   FilterRunner(ParticleFilter filter, const ObservationModel& model, const WallField& walls,
                const RobotLog& log, const std::vector<ScanObservation>& observations,
                const FilterRunnerOptions& options, const GridRayCaster* caster = nullptr);
+  /// The same runner preparing each scan for `model` as it steps (make_observation with
+  /// `observation`) instead of reading it from a vector of every scan: a long log's prepared
+  /// scans are never all held (the result is the same).
+  FilterRunner(ParticleFilter filter, const ObservationModel& model, const WallField& walls,
+               const RobotLog& log, const ObservationOptions& observation,
+               const FilterRunnerOptions& options, const GridRayCaster* caster = nullptr);
 
   /// Advances to scan `i` (the motion from the last scan stepped, or none for the first) and
   /// records what the filter did. Scans must come in increasing order.
@@ -115,12 +121,16 @@ class FilterRunner {
   const ObservationModel& model_;
   const WallField& walls_;
   const RobotLog& log_;
-  const std::vector<ScanObservation>& observations_;
+  const std::vector<ScanObservation>* observations_ = nullptr;  ///< every scan, or null
+  ObservationOptions observation_;  ///< how a scan is prepared when observations_ is null
+  ScanObservation prepared_;        ///< the scan last prepared (observations_ null)
   FilterRunnerOptions options_;
   const GridRayCaster* caster_;
   /// The guide's motion from scan `from` to scan `to`, when both have a guide pose, the
   /// odometry's step is large enough to be guided and the guide's motion agrees with it.
   std::optional<OdometryMotion> guided_motion(std::size_t from, std::size_t to) const;
+  /// Scan `i` prepared for the model.
+  const ScanObservation& observation(std::size_t i);
 
   std::vector<std::optional<Pose2>> guide_;
   std::size_t guided_steps_ = 0;

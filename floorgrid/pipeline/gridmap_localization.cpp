@@ -16,7 +16,7 @@ ParticleFilter start_gridmap_filter(const DualMaps& maps, const std::optional<St
   if (start) {
     filter.initialize_tracking(TrackingStart{.pose = start->grid}, maps.gridmap());
   } else {
-    filter.initialize_from_hypotheses(maps.gridmap(), maps.grid_observations()[0],
+    filter.initialize_from_hypotheses(maps.gridmap(), maps.grid_observation(0),
                                       maps.grid_model().field(), std::nullopt, options.threads);
   }
   return filter;
@@ -28,7 +28,7 @@ void reseed_globally(FilterRunner& runner, const DualMaps& maps, std::size_t i,
                      const DualLocalizerOptions& options) {
   runner.filter() =
       ParticleFilter(options.grid.filter, stream_seed(options.seed, SeedStream::gridmap_reseed, i));
-  runner.filter().initialize_from_hypotheses(maps.gridmap(), maps.grid_observations()[i],
+  runner.filter().initialize_from_hypotheses(maps.gridmap(), maps.grid_observation(i),
                                              maps.grid_model().field(), std::nullopt,
                                              options.threads);
 }
@@ -85,7 +85,8 @@ GridmapLocalization localize_on_gridmap(const DualMaps& maps, const DualLocalize
       static_cast<std::size_t>(std::max(1, options.gridmap_localization.max_global_scans));
   bool start_held = inputs.start.has_value();  // did the filter keep to the given start?
   FilterRunner runner(start_gridmap_filter(maps, inputs.start, options), maps.grid_model().model(),
-                      maps.grid_walls(), inputs.log, maps.grid_observations(), options.grid.runner);
+                      maps.grid_walls(), inputs.log, maps.grid_observation_options(),
+                      options.grid.runner);
   if (!inputs.start)
     runner.start_at(0);  // the hypotheses used scan 0
   GridmapLocalization found;

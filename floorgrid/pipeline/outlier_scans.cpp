@@ -47,30 +47,80 @@ Cells cells_of(const ReferencePairs& pairs, double cell) {
   return cells;
 }
 
+/// The upper median of `sorted` without the entries at `skip` (positions in it, ascending):
+/// the (n - k) / 2-th of the rest, found by stepping over the skipped positions before it.
+double upper_median_without(const std::vector<double>& sorted,
+                            const std::vector<std::size_t>& skip) {
+  std::size_t at = (sorted.size() - skip.size()) / 2;
+  for (const std::size_t p : skip) {
+    if (p > at)
+      break;
+    ++at;
+  }
+  return sorted[at];
+}
+
 /// Per scan: each of its pairs' deviation from the median residual of the other scans' pairs
-/// in its cell (where those are enough for a consensus).
+/// in its cell (where those are enough for a consensus). A cell's residuals are sorted once and
+/// each scan's consensus read off them past its own pairs: O(m log m) for a cell of m pairs,
+/// where comparing every pair with every other was O(m^2), and a long run revisits every cell.
 std::vector<std::vector<double>> deviations_per_scan(const Cells& cells,
                                                      const Eigen::Matrix2Xd& residual,
                                                      const std::vector<std::size_t>& scan_of,
                                                      std::size_t scans,
                                                      const OutlierScanOptions& options) {
   std::vector<std::vector<double>> deviations(scans);
-  std::vector<double> xs, ys;
+  std::vector<std::size_t> order, rank_x, rank_y, by_scan, skip_x, skip_y;
+  std::vector<double> sorted_x, sorted_y;
+  const auto rank_along = [&](const std::vector<Eigen::Index>& members, int axis,
+                              std::vector<double>& sorted, std::vector<std::size_t>& rank) {
+    const std::size_t m = members.size();
+    order.resize(m);
+    for (std::size_t k = 0; k < m; ++k)
+      order[k] = k;
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+      return residual(axis, members[a]) < residual(axis, members[b]);
+    });
+    sorted.resize(m);
+    rank.resize(m);
+    for (std::size_t r = 0; r < m; ++r) {
+      sorted[r] = residual(axis, members[order[r]]);
+      rank[order[r]] = r;
+    }
+  };
   for (const auto& [cell, members] : cells) {
-    for (const Eigen::Index i : members) {
-      xs.clear();
-      ys.clear();
-      for (const Eigen::Index j : members) {
-        if (scan_of[static_cast<std::size_t>(j)] == scan_of[static_cast<std::size_t>(i)])
-          continue;
-        xs.push_back(residual(0, j));
-        ys.push_back(residual(1, j));
+    const std::size_t m = members.size();
+    rank_along(members, 0, sorted_x, rank_x);
+    rank_along(members, 1, sorted_y, rank_y);
+    // The cell's pairs by scan, each scan's pairs together.
+    by_scan.resize(m);
+    for (std::size_t k = 0; k < m; ++k)
+      by_scan[k] = k;
+    std::stable_sort(by_scan.begin(), by_scan.end(), [&](std::size_t a, std::size_t b) {
+      return scan_of[static_cast<std::size_t>(members[a])] <
+             scan_of[static_cast<std::size_t>(members[b])];
+    });
+    for (std::size_t first = 0; first < m;) {
+      const std::size_t scan = scan_of[static_cast<std::size_t>(members[by_scan[first]])];
+      std::size_t last = first;
+      while (last < m && scan_of[static_cast<std::size_t>(members[by_scan[last]])] == scan)
+        ++last;
+      const std::size_t own = last - first;
+      if (m - own >= options.min_cell_pairs) {
+        skip_x.clear();
+        skip_y.clear();
+        for (std::size_t k = first; k < last; ++k) {
+          skip_x.push_back(rank_x[by_scan[k]]);
+          skip_y.push_back(rank_y[by_scan[k]]);
+        }
+        std::sort(skip_x.begin(), skip_x.end());
+        std::sort(skip_y.begin(), skip_y.end());
+        const Eigen::Vector2d consensus(upper_median_without(sorted_x, skip_x),
+                                        upper_median_without(sorted_y, skip_y));
+        for (std::size_t k = first; k < last; ++k)
+          deviations[scan].push_back((residual.col(members[by_scan[k]]) - consensus).norm());
       }
-      if (xs.size() < options.min_cell_pairs)
-        continue;
-      const Eigen::Vector2d consensus(upper_median(xs), upper_median(ys));
-      deviations[scan_of[static_cast<std::size_t>(i)]].push_back(
-          (residual.col(i) - consensus).norm());
+      first = last;
     }
   }
   return deviations;

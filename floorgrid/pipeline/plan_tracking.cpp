@@ -113,7 +113,7 @@ class GridmapMender {
                           stream_seed(options_.seed, SeedStream::gridmap_mend, i));
     filter.initialize_tracking(check.gridmap_start(i, plan_pose), maps_.gridmap());
     runner_.emplace(std::move(filter), maps_.grid_model().model(), maps_.grid_walls(), log_,
-                    maps_.grid_observations(), options_.grid.runner);
+                    maps_.grid_observation_options(), options_.grid.runner);
     runner_->start_at(i);
     unconverged_ = 0;
     ++result.grid_restarts.from_plan;
@@ -148,7 +148,7 @@ void track_plan(const DualMaps& maps, const RobotLog& log, const DualLocalizerOp
                                         location.start_heading_sigma, location.scale, 0.0),
                              maps.plan());
   FilterRunner runner(std::move(filter), maps.plan_model().model(), maps.plan_walls(), log,
-                      maps.plan_observations(), options.plan.runner, maps.plan_rays());
+                      maps.plan_observation_options(), options.plan.runner, maps.plan_rays());
   if (options.guide_plan_by_gridmap)
     runner.guide(gridmap_guide(result));
   DualCheck check(options.dual_check, location.registration, location.scale);

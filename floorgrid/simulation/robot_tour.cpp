@@ -50,6 +50,34 @@ std::vector<TimedPose> drive_tour(const std::vector<Eigen::Vector2d>& waypoints,
   return poses;
 }
 
+std::vector<TimedPose> drive_tour_for(const std::vector<Eigen::Vector2d>& waypoints,
+                                      double duration, const TourOptions& options) {
+  std::vector<TimedPose> once = drive_tour(waypoints, options);
+  const double once_seconds = once.empty() ? 0.0 : once.back().time - once.front().time;
+  if (!(duration > 0.0) || once_seconds <= 0.0)
+    return once;
+  // Forth, back, forth, ...: the robot never jumps, it turns round at either end. Each pass
+  // takes about as long as the first (the turns at the ends are a few seconds more), so one
+  // pass more than the duration needs is driven and the rest cut off.
+  const auto passes = static_cast<std::size_t>(std::ceil(duration / once_seconds)) + 1;
+  std::vector<Eigen::Vector2d> longer;
+  longer.reserve(passes * waypoints.size());
+  longer.push_back(waypoints.front());
+  for (std::size_t pass = 0; pass < passes; ++pass) {
+    if (pass % 2 == 0)
+      longer.insert(longer.end(), waypoints.begin() + 1, waypoints.end());
+    else
+      longer.insert(longer.end(), waypoints.rbegin() + 1, waypoints.rend());
+  }
+  std::vector<TimedPose> poses = drive_tour(longer, options);
+  // Half a tick of slack: the times are sums of ticks, not exact multiples.
+  const double end = options.start_time + duration + 0.5 * options.tick;
+  const auto past =
+      std::find_if(poses.begin(), poses.end(), [end](const TimedPose& p) { return p.time > end; });
+  poses.erase(past, poses.end());
+  return poses;
+}
+
 double path_length(const std::vector<TimedPose>& poses) {
   double total = 0.0;
   for (std::size_t i = 1; i < poses.size(); ++i) {

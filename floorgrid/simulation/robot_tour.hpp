@@ -29,6 +29,13 @@ struct TourOptions {
 std::vector<TimedPose> drive_tour(const std::vector<Eigen::Vector2d>& waypoints,
                                   const TourOptions& options = {});
 
+/// Drives the tour over and over, forth and then back (turning on the spot at either end),
+/// until `duration` seconds have passed: the poses of drive_tour over that longer tour, up to
+/// start_time + duration (the last pose within half a tick of it). A duration not above zero
+/// (or NaN), or a tour that takes no time (one waypoint), gives drive_tour's poses unchanged.
+std::vector<TimedPose> drive_tour_for(const std::vector<Eigen::Vector2d>& waypoints,
+                                      double duration, const TourOptions& options = {});
+
 /// Total length driven, metres.
 double path_length(const std::vector<TimedPose>& poses);
 

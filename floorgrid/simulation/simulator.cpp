@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <sstream>
 
 #include "floorgrid/core/error.hpp"
+#include "floorgrid/core/validation.hpp"
 #include "floorgrid/maps/plan_units.hpp"
 #include "floorgrid/simulation/arc_bend.hpp"
 #include "floorgrid/simulation/laser_simulator.hpp"
@@ -50,10 +52,34 @@ WarpParams choose_warp(const SimulatedDataset& d, const Pose2& start, Random& ra
 
 }  // namespace
 
-SimulatedDataset simulate(const std::string& preset_name, std::uint64_t seed) {
+void validate(const SimulationOptions& o) {
+  require_option(std::isfinite(o.scan_rate) && o.scan_rate > 0.0, "scan_rate", o.scan_rate,
+                 "a positive number of scans a second");
+  require_option(std::isfinite(o.max_duration) && o.max_duration > 0.0, "max_duration",
+                 o.max_duration, "a positive number of seconds");
+  if (o.duration) {
+    const double d = *o.duration;
+    require_option(std::isfinite(d) && d > 0.0, "duration", d, "a positive number of seconds");
+    std::ostringstream rule;
+    rule << "at most " << o.max_duration << " seconds";
+    require_option(d <= o.max_duration, "duration", d, rule.str());
+    rule.str("");
+    rule << "at least " << 2.0 / o.scan_rate << " seconds (two scans)";
+    require_option(d * o.scan_rate >= 2.0, "duration", d, rule.str());
+  }
+}
+
+SimulatedDataset simulate(const std::string& preset_name, std::uint64_t seed,
+                          const SimulationOptions& options) {
+  validate(options);
   SimulatedDataset d;
   d.preset = simulation_preset(preset_name);
   d.seed = seed;
+  if (options.duration) {
+    // A scan with every odometry reading, at the rate asked (truth.json says so).
+    d.preset.scan_period = 1.0 / options.scan_rate;
+    d.preset.tour.tick = d.preset.scan_period;
+  }
   const SimulationPreset& p = d.preset;
   // Independent streams, so that a change in one stage does not reshuffle the others.
   Random random(seed);
@@ -67,7 +93,8 @@ SimulatedDataset simulate(const std::string& preset_name, std::uint64_t seed) {
   d.drawing_units_per_metre = 1.0 / metres_per_unit(*plan_unit_from_name(p.drawing_units));
   d.plan = b.plan_in_world().scaled(d.plan_scale);
 
-  d.true_trajectory = drive_tour(b.tour, p.tour);
+  d.true_trajectory = options.duration ? drive_tour_for(b.tour, *options.duration, p.tour)
+                                       : drive_tour(b.tour, p.tour);
   const Pose2 start = d.true_trajectory.front().pose;
   d.warp = choose_warp(d, start, warp_random);
   const SimulatedWarp warp(d.warp);

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,21 @@
 #include "floorgrid/simulation/simulation_preset.hpp"
 
 namespace floorgrid {
+
+/// How a preset's run is made; the defaults drive the preset's tour once at its own rates.
+struct SimulationOptions {
+  /// Seconds the run lasts (SPEC `simulate --duration`): the tour is driven over and over,
+  /// forth and back, until then, with a scan and an odometry reading every 1/scan_rate
+  /// seconds. Unset: the tour once, a scan every preset scan_period.
+  std::optional<double> duration;
+  double scan_rate = 15.0;  ///< scans (and odometry readings) a second with a duration
+  /// Seconds: the longest duration accepted (4 hours: about 216,000 scans, a log of 1.5 GB
+  /// of text and a few GB of memory to make it).
+  double max_duration = 4.0 * 3600.0;
+};
+
+/// Checks `options`; throws InputError naming the field ("duration", ...).
+void validate(const SimulationOptions& options);
 
 /// Figures of a simulated run, checked by the tests and printed by the CLI.
 struct SimulationStatistics {
@@ -59,8 +75,10 @@ struct SimulatedDataset {
   PlanTruth truth() const { return PlanTruth(warp, plan_scale); }
 };
 
-/// Simulates the preset's building, run and maps for a seed. Deterministic: the same preset
-/// and seed give the same dataset. Throws InputError for an unknown preset.
-SimulatedDataset simulate(const std::string& preset, std::uint64_t seed);
+/// Simulates the preset's building, run and maps for a seed. Deterministic: the same preset,
+/// seed and options give the same dataset (without a duration, the same as before durations
+/// existed). Throws InputError for an unknown preset or bad options.
+SimulatedDataset simulate(const std::string& preset, std::uint64_t seed,
+                          const SimulationOptions& options = {});
 
 }  // namespace floorgrid

@@ -155,6 +155,28 @@ TEST(SimulateCommand, BadArgumentsExitWithTwo) {
   EXPECT_NE(blocked.err.find("file"), std::string::npos) << blocked.err;
 }
 
+TEST(SimulateCommand, DurationGivesARunOfThatLengthAndBadOnesAreRefusedByName) {
+  TempDir dir;
+  const auto run = run_floorgrid("simulate --preset office --duration 60 --seed 4 --out " +
+                                 quoted(dir / "minute"));
+  ASSERT_EQ(run.status, 0) << run.err;
+  const RobotLog log = io::read_carmen(dir / "minute" / "log.carmen");
+  ASSERT_EQ(log.scans.size(), 901u);  // 15 a second, the first at 0 s and the last at 60 s
+  EXPECT_NEAR(log.scans.back().timestamp - log.scans.front().timestamp, 60.0, 1e-3);
+  EXPECT_NE(run.out.find("901 scans"), std::string::npos) << run.out;
+  for (const std::string bad : {"0", "-5", "nan", "inf", "100000", "abc"}) {
+    const auto refused = run_floorgrid("simulate --preset office --duration " + bad + " --out " +
+                                       quoted(dir / "bad"));
+    EXPECT_EQ(refused.status, 2) << bad;
+    EXPECT_NE(refused.err.find("--duration"), std::string::npos) << bad << ": " << refused.err;
+    EXPECT_FALSE(fs::exists(dir / "bad")) << bad;
+  }
+  // Only with a preset.
+  EXPECT_EQ(
+      run_floorgrid("simulate --from-log x.log --duration 60 --out " + quoted(dir / "c")).status,
+      2);
+}
+
 TEST(SimulateCommand, FromARealLogWritesADatasetOtherToolsRead) {
   FLOORGRID_REQUIRE_DATA("carmen/aces-corrected.log.gz");
   TempDir dir;

@@ -95,6 +95,36 @@ TEST(FilterRunner, TracksARunAndRefinesEachPoseOntoTheWalls) {
   EXPECT_GT(runner.evaluations(), 0u);
 }
 
+TEST(FilterRunner, PreparingEachScanAsItStepsGivesTheSameRecords) {
+  // The runner over prepared scans and the one preparing them itself: the same filter, the
+  // same seed, record for record, while a third with other beams per scan differs.
+  std::vector<Pose2> poses;
+  for (int k = 0; k < 40; ++k)
+    poses.push_back({2.0 + 0.15 * k, 5.0 + 0.4 * std::sin(0.15 * k), 0.05 * std::cos(0.1 * k)});
+  const RobotLog log = test::log_along(room().walls, poses);
+  const std::vector<ScanObservation> obs = observations(log);
+  const auto runner_of = [&](auto&& scans) {
+    ParticleFilter filter(ParticleFilterOptions{}, 7);
+    filter.initialize_tracking(around(poses[0].compose({0.1, -0.1, 0.02}), 0.1, 0.05));
+    return FilterRunner(std::move(filter), room().model, room().field, log, scans, {});
+  };
+  FilterRunner held = runner_of(obs);
+  FilterRunner prepared = runner_of(ObservationOptions{.max_beams = 60});
+  FilterRunner fewer = runner_of(ObservationOptions{.max_beams = 20});
+  std::size_t different = 0;
+  for (std::size_t i = 0; i < log.scans.size(); ++i) {
+    const FilterRecord a = held.step(i), b = prepared.step(i), c = fewer.step(i);
+    ASSERT_EQ(a.pose.x, b.pose.x) << i;
+    ASSERT_EQ(a.pose.y, b.pose.y) << i;
+    ASSERT_EQ(a.pose.theta, b.pose.theta) << i;
+    ASSERT_EQ(a.fit, b.fit) << i;
+    ASSERT_EQ(a.converged, b.converged) << i;
+    different += a.pose.x != c.pose.x || a.fit != c.fit;
+  }
+  EXPECT_EQ(held.evaluations(), prepared.evaluations());
+  EXPECT_GT(different, 0u);
+}
+
 /// A run of 1 m steps across the room, and its log with odometry that turns 4 degrees too far
 /// on every step (the log's poses drift; the scans are taken at the true poses).
 struct DriftingRun {

@@ -119,5 +119,36 @@ TEST(OutlierScans, DropsScansGrosslyOffWhereNoOtherScanLooked) {
   EXPECT_EQ(reject_outlier_scans(pairs, per_scan, {.max_gross_residual = 3.5}), 0u);
 }
 
+TEST(OutlierScans, ManyVisitsToEveryCellStillDropOnlyTheScansThatDisagree) {
+  // A long run: the box driven round ten times, so each cell holds pairs of about 70 scans,
+  // many of them each of the others' consensus. Scan 123 is 0.2 m off (beyond max_deviation),
+  // scan 321 0.1 m (within it), scan 456 0.3 m the other way.
+  std::vector<std::size_t> one_tour;
+  const ReferencePairs tour = scans_of_pairs({}, Eigen::Vector2d::Zero(), one_tour);
+  const Eigen::Index n = tour.size();
+  ReferencePairs pairs;
+  pairs.points_in_plan.resize(2, 10 * n);
+  pairs.points_in_grid.resize(2, 10 * n);
+  Random random(9);
+  for (Eigen::Index k = 0; k < 10 * n; ++k) {
+    pairs.points_in_plan.col(k) = tour.points_in_plan.col(k % n);
+    pairs.points_in_grid.col(k) =
+        tour.points_in_grid.col(k % n) + Eigen::Vector2d(random.normal(0.01), random.normal(0.01));
+  }
+  const auto shift = [&](std::size_t scan, const Eigen::Vector2d& by) {
+    for (Eigen::Index k = 0; k < 40; ++k)
+      pairs.points_in_grid.col(static_cast<Eigen::Index>(40 * scan) + k) += by;
+  };
+  shift(123, {0.2, 0.0});
+  shift(321, {0.0, 0.1});
+  shift(456, {-0.3, 0.0});
+  std::vector<std::size_t> per_scan(600, 40);
+  EXPECT_EQ(reject_outlier_scans(pairs, per_scan), 2u);
+  EXPECT_EQ(per_scan[123], 0u);
+  EXPECT_EQ(per_scan[456], 0u);
+  EXPECT_EQ(per_scan[321], 40u);
+  EXPECT_EQ(pairs.size(), 598 * 40);
+}
+
 }  // namespace
 }  // namespace floorgrid

@@ -3,7 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <memory>
 
@@ -15,12 +17,18 @@
 namespace floorgrid {
 namespace {
 
-/// Each preset simulated once per test run (a second or so each).
-const SimulatedDataset& dataset(const std::string& preset, std::uint64_t seed = 1) {
+/// Each preset simulated once per test run (a second or so each). "office@600" is the office
+/// driven for 600 seconds (SimulationOptions::duration).
+const SimulatedDataset& dataset(const std::string& key, std::uint64_t seed = 1) {
   static std::map<std::pair<std::string, std::uint64_t>, std::unique_ptr<SimulatedDataset>> cache;
-  auto& slot = cache[{preset, seed}];
-  if (!slot)
-    slot = std::make_unique<SimulatedDataset>(simulate(preset, seed));
+  auto& slot = cache[{key, seed}];
+  if (!slot) {
+    const std::size_t at = key.find('@');
+    SimulationOptions options;
+    if (at != std::string::npos)
+      options.duration = std::stod(key.substr(at + 1));
+    slot = std::make_unique<SimulatedDataset>(simulate(key.substr(0, at), seed, options));
+  }
   return *slot;
 }
 
@@ -194,14 +202,55 @@ TEST_P(SimulatorPresets, ManualPairsFollowTheTruthWithAboutAPixelOfNoise) {
   EXPECT_LT(rms, 0.09);
 }
 
+// The last: a run of a given length (the tour driven over and over) keeps every promise too.
 INSTANTIATE_TEST_SUITE_P(Presets, SimulatorPresets,
-                         ::testing::Values("office", "warehouse", "bent-office", "office-inches"),
+                         ::testing::Values("office", "warehouse", "bent-office", "office-inches",
+                                           "office@1200"),
                          [](const auto& param_info) {
                            std::string name = param_info.param;
                            for (char& c : name)
-                             c = c == '-' ? '_' : c;
+                             c = std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
                            return name;
                          });
+
+TEST(SimulatorDuration, RunLastsThatLongAtFifteenScansASecond) {
+  const SimulatedDataset& once = dataset("office");
+  const SimulatedDataset& d = dataset("office@1200");
+  const double duration = 1200, period = 1.0 / 15.0;
+  ASSERT_GT(duration, 2.0 * once.statistics.duration);  // the tour is driven more than twice
+  const std::vector<LaserScan>& scans = d.log.scans;
+  EXPECT_NEAR(static_cast<double>(scans.size()), duration * 15.0 + 1.0, 1.0);
+  EXPECT_EQ(d.log.odometry.size(), scans.size());  // an odometry reading with every scan
+  EXPECT_EQ(d.statistics.scans, scans.size());
+  EXPECT_NEAR(scans.back().timestamp - scans.front().timestamp, duration, period);
+  EXPECT_NEAR(d.statistics.duration, duration, period);
+  for (std::size_t i = 1; i < scans.size(); ++i)
+    ASSERT_NEAR(scans[i].timestamp - scans[i - 1].timestamp, period, 1e-6) << i;
+  EXPECT_DOUBLE_EQ(d.preset.scan_period, period);
+  // The same building and world, driven for longer: more than twice the path.
+  EXPECT_EQ(d.building.outline.sizes(), once.building.outline.sizes());
+  EXPECT_EQ(d.plan_scale, once.plan_scale);
+  EXPECT_GT(d.statistics.path_length, 2.0 * once.statistics.path_length);
+  EXPECT_EQ(d.true_trajectory.front().pose.x, once.true_trajectory.front().pose.x);
+}
+
+TEST(SimulatorDuration, BadDurationsAreRefusedNamingTheField) {
+  for (const double bad :
+       {0.0, -60.0, std::nan(""), std::numeric_limits<double>::infinity(), 1e6, 0.1}) {
+    SimulationOptions options;
+    options.duration = bad;
+    try {
+      simulate("office", 1, options);
+      FAIL() << "no error for " << bad;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.field(), "duration") << bad;
+      EXPECT_NE(e.message().find("must be"), std::string::npos) << e.what();
+    }
+  }
+  SimulationOptions fine;
+  fine.duration = 14400.0;
+  EXPECT_NO_THROW(validate(fine));
+}
 
 TEST(Simulator, DifferentSeedsGiveDifferentBuildings) {
   const SimulatedDataset& a = dataset("office", 1);
