@@ -94,6 +94,20 @@ row = sys.stdin.read().rstrip("\n").split("\t")
 widths = [7, 7, 6, 6, 7, 11, 8] + [max(len(s), 6) for s in sys.argv[1].split()] + [8, 11, 3]
 print(" ".join((v.ljust(w) if i == 0 else v.rjust(w)) for i, (v, w) in enumerate(zip(row, widths))))
 ' "$stages"
+  # The peak memory at each stage's end (metrics.json peak_memory_mib: it only grows, so the
+  # stage where it jumps is the one that raised it).
+  "$py" - "$run/aligned/metrics.json" <<'EOF'
+import json, sys
+try:
+    with open(sys.argv[1]) as f:
+        peak = json.load(f).get("peak_memory_mib", {})
+except (OSError, ValueError):
+    peak = {}
+order = ["load", "maps_alignment", "localize", "wall_slide", "fit", "write"]
+if peak:
+    print("        peak MiB at the end of: " +
+          ", ".join(f"{s} {peak[s]:.0f}" for s in order if s in peak))
+EOF
 done
 
 # Growth from the shortest run to the longest, column by column (60/15 with the default list).

@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "floorgrid/core/error.hpp"
+#include "floorgrid/core/memory_usage.hpp"
 #include "floorgrid/io/atomic_file.hpp"
 #include "floorgrid/io/dataset_run.hpp"
 #include "floorgrid/io/export_inputs.hpp"
@@ -63,6 +64,7 @@ std::unique_ptr<AlignmentJob> load_alignment_job(const std::filesystem::path& da
       load_dataset(dataset, options.raster, options.limits, options.units),
       options.align.pairs_from != PairSource::maps);
   job->timings.load = seconds_since(start);
+  job->timings.load_peak_mib = peak_resident_mib();
   return job;
 }
 

@@ -5,6 +5,7 @@
 #include <map>
 #include <numbers>
 
+#include "floorgrid/core/memory_usage.hpp"
 #include "floorgrid/evaluation/overlay.hpp"
 #include "floorgrid/io/atomic_file.hpp"
 #include "floorgrid/io/heat_map_files.hpp"
@@ -265,6 +266,15 @@ json metrics_json(const Alignment& a, const std::string& dataset, const Alignmen
                     {"evaluate", a.evaluate_seconds},
                     {"write", t.write},
                     {"heat_maps", t.heat_maps}};
+  // Where the memory goes: the peak so far at the end of each stage that ran (it only grows).
+  json peak = json::object();
+  if (t.load_peak_mib > 0.0)
+    peak["load"] = t.load_peak_mib;
+  for (const auto& [stage, mib] : a.peak_memory_mib)
+    peak[stage] = mib;
+  if (t.write_peak_mib > 0.0)
+    peak["write"] = t.write_peak_mib;
+  j["peak_memory_mib"] = peak;
   return j;
 }
 
@@ -327,6 +337,7 @@ AlignmentFiles write_alignment(const Alignment& a, const AlignmentInputs& in,
   }
   timings.write = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() -
                   timings.heat_maps;
+  timings.write_peak_mib = peak_resident_mib();
   json metrics = metrics_json(a, dataset, timings, floorplan_units);
   if (!dataset_path.empty())
     metrics["dataset_path"] = std::filesystem::absolute(dataset_path).lexically_normal().string();

@@ -16,6 +16,10 @@ struct AlignmentTimings {
   double load = 0.0;       ///< reading the dataset
   double write = 0.0;      ///< writing the outputs (all but metrics.json itself and the heat maps)
   double heat_maps = 0.0;  ///< computing and writing heatmaps/ (every model's)
+  /// The process's peak resident memory (MiB) after loading, and after writing every file but
+  /// metrics.json (metrics.json `peak_memory_mib`, with the Alignment's stages).
+  double load_peak_mib = 0.0;
+  double write_peak_mib = 0.0;
 };
 
 /// One model's part of metrics.json (`models.<name>`): its failure, or its errors against the

@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "floorgrid/core/error.hpp"
+#include "floorgrid/core/memory_usage.hpp"
 #include "floorgrid/core/statistics.hpp"
 #include "floorgrid/geometry/point_index.hpp"
 #include "floorgrid/mapping/model_selection.hpp"
@@ -335,8 +336,11 @@ Alignment align(const AlignmentInputs& in, const AlignmentOptions& options,
     if (progress)
       progress({"localize", "maps", 0, 1});
     localize_on_maps(in, options, a);
-    if (a.localization.status.ok)
+    a.peak_memory_mib["maps_alignment"] = peak_resident_mib();
+    if (a.localization.status.ok) {
       judge_alignment(in, options, a, progress);
+      a.peak_memory_mib["fit"] = peak_resident_mib();
+    }
     return a;
   }
   // The maps first: their alignment seeds the run, checks its pairs and stands in for them.
@@ -344,6 +348,7 @@ Alignment align(const AlignmentInputs& in, const AlignmentOptions& options,
     progress({"localize", "maps", 0, 1});
   std::vector<std::string> maps_notes;
   a.maps = align_on_maps(in, options, maps_notes);
+  a.peak_memory_mib["maps_alignment"] = peak_resident_mib();
   // The reference pairs, by dual Monte Carlo localization.
   // Where the faces were found, the run localizes on the plan grown to them.
   const OccupancyGrid& run_plan = a.maps->plan_at_faces ? *a.maps->plan_at_faces : in.plan_grid;
@@ -358,6 +363,7 @@ Alignment align(const AlignmentInputs& in, const AlignmentOptions& options,
                                    if (progress)
                                      progress({"localize", p.phase, p.scan, p.scans});
                                  });
+  a.peak_memory_mib["localize"] = peak_resident_mib();
   a.localization.notes.insert(a.localization.notes.begin(), maps_notes.begin(), maps_notes.end());
   if (a.localization.status.ok && options.wall_slide.iterations > 0 &&
       a.localization.pairs.size() > 0) {
@@ -373,14 +379,17 @@ Alignment align(const AlignmentInputs& in, const AlignmentOptions& options,
     slide.pairs = {};
     a.wall_slide = std::move(slide);
     a.wall_slide_seconds = seconds_since(slide_start);
+    a.peak_memory_mib["wall_slide"] = peak_resident_mib();
   }
   // The pairs' noise is the run's: the maps' pairs have no visits to compare.
   if (a.localization.status.ok)
     a.pair_noise =
         pair_noise(a.localized_pairs.size() > 0 ? a.localized_pairs : a.localization.pairs);
   choose_pair_source(in, options, a);
-  if (a.localization.status.ok)
+  if (a.localization.status.ok) {
     judge_alignment(in, options, a, progress);
+    a.peak_memory_mib["fit"] = peak_resident_mib();
+  }
   return a;
 }
 

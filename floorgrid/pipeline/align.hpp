@@ -114,6 +114,9 @@ struct Alignment {
   std::string chosen;                          ///< the model `auto` chose ("" without auto)
   double fit_seconds = 0.0;                    ///< all fits and cross-validations
   double evaluate_seconds = 0.0;               ///< all judging
+  /// The process's peak resident memory (MiB) at the end of each stage that ran:
+  /// maps_alignment, localize (with the pairs), wall_slide, fit (the fits and their judging).
+  std::map<std::string, double> peak_memory_mib;
   /// The pairs' own noise from revisits (pair_noise), taken out of every model's std_m.
   std::optional<PairNoise> pair_noise;
   /// The truth as a function (plan -> grid), when the dataset has one.

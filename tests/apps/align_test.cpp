@@ -69,6 +69,17 @@ TEST(AlignCommand, OfficeGivesAccuratePairsAndModelsAndEveryContractKey) {
                           "evaluate", "write"}) {
     EXPECT_TRUE(m["timings_s"].contains(key)) << key;
   }
+  // The peak memory at each stage's end: it only grows, and a process that read the dataset
+  // holds more than a few MiB and less than the machine (the office peaks near 150 MiB).
+  double before = 0.0;
+  for (const char* stage : {"load", "maps_alignment", "localize", "fit", "write"}) {
+    ASSERT_TRUE(m["peak_memory_mib"].contains(stage)) << stage;
+    const double mib = m["peak_memory_mib"][stage].get<double>();
+    EXPECT_GE(mib, before) << stage;
+    before = mib;
+  }
+  EXPECT_GT(m["peak_memory_mib"]["load"].get<double>(), 5.0);
+  EXPECT_LT(m["peak_memory_mib"]["write"].get<double>(), 4096.0);
   for (const char* model : {"gt", "gp", "gpgt", "ct", "dt", "tps", "lc", "auto"}) {
     const json& j = m["models"][model];
     for (const char* key :
