@@ -252,21 +252,8 @@ ScaleProfile profile_scale(const WallField& walls, std::span<const ScanObservati
 
 ScaleFit fit_scale(const WallField& walls, std::span<const ScanObservation* const> scans,
                    std::span<const Pose2> poses, double initial_scale,
-                   const ScanMatchOptions& options, int max_iterations, int jackknife_blocks,
-                   const GridRayCaster* caster, double tolerance) {
+                   const ScanMatchOptions& options, int max_iterations, int jackknife_blocks) {
   validate(options);
-  if (caster) {
-    // The same fit on each scan's beams consistent with the walls at its initial pose.
-    std::vector<ScanObservation> kept;
-    kept.reserve(scans.size());
-    for (std::size_t i = 0; i < scans.size(); ++i)
-      kept.push_back(beam_consistent(*scans[i], *caster, poses[i], initial_scale, tolerance));
-    std::vector<const ScanObservation*> views;
-    views.reserve(kept.size());
-    for (const ScanObservation& k : kept)
-      views.push_back(&k);
-    return fit_scale(walls, views, poses, initial_scale, options, max_iterations, jackknife_blocks);
-  }
   if (scans.size() != poses.size() || scans.empty())
     throw InputError("needs as many poses as scans, at least one", {}, 0, "scale_fit.scans");
   if (!(initial_scale > 0.0))

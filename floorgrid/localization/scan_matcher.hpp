@@ -119,13 +119,11 @@ struct ScaleFit {
 /// poses eliminated by a Schur complement (O(scans) per iteration). The scale's uncertainty is
 /// a delete-a-block jackknife over `jackknife_blocks` consecutive runs of scans, so errors
 /// shared by neighbouring scans (one misdrawn wall) are not counted as independent.
-/// `scans` and `poses` have the same length (>= 1).
-/// With `caster`, each scan is reduced to its beams consistent with it at its initial pose
-/// (beam_consistent with `tolerance`) first.
+/// `scans` and `poses` have the same length (>= 1). To fit on the beams consistent with a
+/// plan (not the endpoints on furniture it lacks), reduce each scan with beam_consistent first.
 ScaleFit fit_scale(const WallField& walls, std::span<const ScanObservation* const> scans,
                    std::span<const Pose2> poses, double initial_scale,
                    const ScanMatchOptions& options = {}, int max_iterations = 30,
-                   int jackknife_blocks = 20, const GridRayCaster* caster = nullptr,
-                   double tolerance = 0.5);
+                   int jackknife_blocks = 20);
 
 }  // namespace floorgrid

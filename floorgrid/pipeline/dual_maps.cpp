@@ -78,15 +78,6 @@ ScanObservation DualMaps::grid_observation(std::size_t i) const {
   return make_observation(log_.scans[i], grid_observation_);
 }
 
-std::vector<ScanObservation> prepare_observations(const RobotLog& log,
-                                                  const ObservationOptions& options) {
-  std::vector<ScanObservation> observations;
-  observations.reserve(log.scans.size());
-  for (const LaserScan& scan : log.scans)
-    observations.push_back(make_observation(scan, options));
-  return observations;
-}
-
 void report_progress(const DualProgressCallback& progress, const char* phase, std::size_t done,
                      std::size_t total, bool converged, std::size_t pairs) {
   if (progress && (done % kProgressEveryScans == 0 || done == total))

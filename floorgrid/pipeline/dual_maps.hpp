@@ -70,10 +70,6 @@ class DualMaps {
   ObservationOptions plan_observation_, grid_observation_;
 };
 
-/// Every scan of `log` prepared with `options`.
-std::vector<ScanObservation> prepare_observations(const RobotLog& log,
-                                                  const ObservationOptions& options);
-
 /// Reports progress every few scans (and at the last).
 void report_progress(const DualProgressCallback& progress, const char* phase, std::size_t done,
                      std::size_t total, bool converged, std::size_t pairs = 0);

@@ -19,9 +19,8 @@ bool usable_for_pairs(const ScanRecord& r, bool refine) {
 double refit_plan_scale(DualLocalization& result, const RobotLog& log, const WallField& plan_walls,
                         const FilterRunnerOptions& plan_runner, const ScaleRefitOptions& options,
                         double scale, const GridRayCaster* plan_caster) {
-  // Each scan reduced to its beams consistent with the plan at its pose as it is prepared
-  // (what fit_scale does with a caster first): a long run's full observations and their
-  // reduced copies are never held at once.
+  // Each scan reduced to its beams consistent with the plan at its pose as it is prepared: a
+  // long run's full observations and their reduced copies are never held at once.
   std::vector<ScanObservation> points;
   std::vector<Pose2> poses;
   std::vector<std::size_t> which;

@@ -36,20 +36,6 @@ ScanMatch apply_proposal(ParticleFilter& filter, const WallField& walls,
 
 FilterRunner::FilterRunner(ParticleFilter filter, const ObservationModel& model,
                            const WallField& walls, const RobotLog& log,
-                           const std::vector<ScanObservation>& observations,
-                           const FilterRunnerOptions& options, const GridRayCaster* caster)
-    : filter_(std::move(filter)),
-      model_(model),
-      walls_(walls),
-      log_(log),
-      observations_(&observations),
-      options_(options),
-      caster_(caster) {
-  validate(options_.match);
-}
-
-FilterRunner::FilterRunner(ParticleFilter filter, const ObservationModel& model,
-                           const WallField& walls, const RobotLog& log,
                            const ObservationOptions& observation,
                            const FilterRunnerOptions& options, const GridRayCaster* caster)
     : filter_(std::move(filter)),
@@ -60,13 +46,6 @@ FilterRunner::FilterRunner(ParticleFilter filter, const ObservationModel& model,
       options_(options),
       caster_(caster) {
   validate(options_.match);
-}
-
-const ScanObservation& FilterRunner::observation(std::size_t i) {
-  if (observations_)
-    return (*observations_)[i];
-  prepared_ = make_observation(log_.scans[i], observation_);
-  return prepared_;
 }
 
 std::optional<OdometryMotion> FilterRunner::guided_motion(std::size_t from, std::size_t to) const {
@@ -116,7 +95,7 @@ FilterRecord FilterRunner::step(std::size_t i) {
   if (update) {
     moved_ = turned_ = 0.0;
     const bool tracking = filter_.converged() && filter_.state() == FilterState::tracking;
-    const ScanObservation& scan = observation(i);
+    const ScanObservation scan = make_observation(log_.scans[i], observation_);
     FilterStatus status;
     if (options_.improved_proposal && tracking) {
       predict();

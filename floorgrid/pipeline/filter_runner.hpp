@@ -81,16 +81,11 @@ struct FilterRecord {
 /// the mean pose. The filter is the runner's own; callers initialize and re-initialize it.
 class FilterRunner {
  public:
-  /// A runner over `log` with `model` on the map whose walls are `walls`; `observations[i]` is
-  /// scan i prepared for `model`. Everything given must outlive the runner.
+  /// A runner over `log` with `model` on the map whose walls are `walls`; each scan is prepared
+  /// for `model` as it is stepped (make_observation with `observation`), so a long log's
+  /// prepared scans are never all held. Everything given by reference must outlive the runner.
   /// With `caster` (the same map's walls), scans are matched by their beams consistent with
   /// it (for a plan: not the endpoints on furniture it lacks).
-  FilterRunner(ParticleFilter filter, const ObservationModel& model, const WallField& walls,
-               const RobotLog& log, const std::vector<ScanObservation>& observations,
-               const FilterRunnerOptions& options, const GridRayCaster* caster = nullptr);
-  /// The same runner preparing each scan for `model` as it steps (make_observation with
-  /// `observation`) instead of reading it from a vector of every scan: a long log's prepared
-  /// scans are never all held (the result is the same).
   FilterRunner(ParticleFilter filter, const ObservationModel& model, const WallField& walls,
                const RobotLog& log, const ObservationOptions& observation,
                const FilterRunnerOptions& options, const GridRayCaster* caster = nullptr);
@@ -121,16 +116,12 @@ class FilterRunner {
   const ObservationModel& model_;
   const WallField& walls_;
   const RobotLog& log_;
-  const std::vector<ScanObservation>* observations_ = nullptr;  ///< every scan, or null
-  ObservationOptions observation_;  ///< how a scan is prepared when observations_ is null
-  ScanObservation prepared_;        ///< the scan last prepared (observations_ null)
+  ObservationOptions observation_;  ///< how a scan is prepared for model_
   FilterRunnerOptions options_;
   const GridRayCaster* caster_;
   /// The guide's motion from scan `from` to scan `to`, when both have a guide pose, the
   /// odometry's step is large enough to be guided and the guide's motion agrees with it.
   std::optional<OdometryMotion> guided_motion(std::size_t from, std::size_t to) const;
-  /// Scan `i` prepared for the model.
-  const ScanObservation& observation(std::size_t i);
 
   std::vector<std::optional<Pose2>> guide_;
   std::size_t guided_steps_ = 0;

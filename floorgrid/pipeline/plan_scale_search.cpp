@@ -29,10 +29,8 @@ struct ScaleTrack {
 
 /// The plan filter of the search: particles with scales spread around the registration's.
 FilterRunner scale_search_runner(const DualMaps& maps, const RobotLog& log,
-                                 const ObservationModel& model,
-                                 const std::vector<ScanObservation>& observations,
-                                 const DualLocalizerOptions& options, const PlanLocation& location,
-                                 const Pose2& start) {
+                                 const ObservationModel& model, const DualLocalizerOptions& options,
+                                 const PlanLocation& location, const Pose2& start) {
   ParticleFilterOptions filter_options = options.plan.filter;
   filter_options.scale_walk = options.scale_search.walk;
   ParticleFilter filter(filter_options, stream_seed(options.seed, SeedStream::scale_search));
@@ -42,7 +40,8 @@ FilterRunner scale_search_runner(const DualMaps& maps, const RobotLog& log,
   FilterRunnerOptions runner = options.plan.runner;
   runner.improved_proposal = false;  // the proposal would match at the mean scale
   runner.refine = false;
-  return FilterRunner(std::move(filter), model, maps.plan_walls(), log, observations, runner);
+  return FilterRunner(std::move(filter), model, maps.plan_walls(), log,
+                      options.scale_search.observation, runner);
 }
 
 /// The mean of the estimates, with a spread that adds their mean variance and their scatter.
@@ -120,9 +119,8 @@ void search_plan_scale(const DualMaps& maps, const RobotLog& log,
   const auto clock = std::chrono::steady_clock::now();
   const ScaleSearchOptions& search = options.scale_search;
   const MapModel model(maps.plan(), options.plan.likelihood, search.model, options.beam);
-  const std::vector<ScanObservation> observations = prepare_observations(log, search.observation);
-  FilterRunner runner = scale_search_runner(maps, log, model.model(), observations, options,
-                                            location, result.start.plan);
+  FilterRunner runner =
+      scale_search_runner(maps, log, model.model(), options, location, result.start.plan);
   const ScaleTrack track = track_scale(runner, result.plan_start_scan,
                                        static_cast<std::size_t>(std::max(1, search.scans)),
                                        log.scans.size(), result.notes);

@@ -1,9 +1,10 @@
 #include "floorgrid/simulation/simulator.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
-#include <sstream>
 
 #include "floorgrid/core/error.hpp"
 #include "floorgrid/core/validation.hpp"
@@ -60,12 +61,10 @@ void validate(const SimulationOptions& o) {
   if (o.duration) {
     const double d = *o.duration;
     require_option(std::isfinite(d) && d > 0.0, "duration", d, "a positive number of seconds");
-    std::ostringstream rule;
-    rule << "at most " << o.max_duration << " seconds";
-    require_option(d <= o.max_duration, "duration", d, rule.str());
-    rule.str("");
-    rule << "at least " << 2.0 / o.scan_rate << " seconds (two scans)";
-    require_option(d * o.scan_rate >= 2.0, "duration", d, rule.str());
+    require_option(d <= o.max_duration, "duration", d,
+                   fmt::format("at most {:g} seconds", o.max_duration));
+    require_option(d * o.scan_rate >= 2.0, "duration", d,
+                   fmt::format("at least {:g} seconds (two scans)", 2.0 / o.scan_rate));
   }
 }
 

@@ -85,41 +85,16 @@ CommandResult run_floorgrid(const std::string& args) {
   return run_command(std::string("'") + FLOORGRID_BINARY + "' " + args);
 }
 
-namespace {
-
-/// A script of tests/support run with the floorgrid binary and the cache folder first.
-std::filesystem::path run_cache_script(const std::string& script,
-                                       const std::vector<std::string>& more) {
-  std::string line =
-      quoted(std::filesystem::path(FLOORGRID_SOURCE_DIR) / "tests" / "support" / script);
-  for (const std::string& word :
-       {std::string(FLOORGRID_BINARY), std::string(FLOORGRID_TEST_CACHE_DIR)}) {
-    line += ' ';
-    line += ::floorgrid::test::quoted(word);
-  }
-  for (const std::string& word : more) {
-    line += ' ';
-    line += ::floorgrid::test::quoted(word);
-  }
-  const CommandResult r = run_command(line);
+std::filesystem::path shared_office_alignment() {
+  const std::filesystem::path script =
+      std::filesystem::path(FLOORGRID_SOURCE_DIR) / "tests" / "support" / "shared_office.sh";
+  const CommandResult r = run_command(quoted(script) + " " + quoted(FLOORGRID_BINARY) + " " +
+                                      quoted(FLOORGRID_TEST_CACHE_DIR));
   std::string folder = r.out;
   while (!folder.empty() && (folder.back() == '\n' || folder.back() == '\r'))
     folder.pop_back();
-  EXPECT_EQ(r.status, 0) << script << " made no result: " << r.out << r.err;
+  EXPECT_EQ(r.status, 0) << "shared_office.sh made no result: " << r.out << r.err;
   return folder;
-}
-
-}  // namespace
-
-std::filesystem::path shared_result(const std::string& name,
-                                    const std::vector<std::string>& commands) {
-  std::vector<std::string> more{name};
-  more.insert(more.end(), commands.begin(), commands.end());
-  return run_cache_script("shared_result.sh", more);
-}
-
-std::filesystem::path shared_office_alignment() {
-  return run_cache_script("shared_office.sh", {});
 }
 
 nlohmann::json read_json(const std::filesystem::path& path) {

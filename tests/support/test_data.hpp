@@ -65,16 +65,12 @@ CommandResult run_floorgrid(const std::string& args);
 /// Runs a shell command.
 CommandResult run_command(const std::string& command);
 
-/// A result that several test processes read, made once per floorgrid binary
-/// (tests/support/shared_result.sh): `commands` are floorgrid command lines in which {} stands
-/// for the result's folder. ctest runs each test in a process of its own, so a suite's
-/// SetUpTestSuite would make it again for every test. The folder is shared: copy what a test
-/// changes. A command that fails fails the calling test (status and output in the message).
-std::filesystem::path shared_result(const std::string& name,
-                                    const std::vector<std::string>& commands);
-
 /// The simulated office of seed 2, aligned with the defaults: `data/` and `align/` in the
-/// folder (shared_result). EvaluateCommand, the report's and the viewer's browser tests read it.
+/// folder. Made once per floorgrid binary by tests/support/shared_office.sh (shared_result.sh,
+/// under FLOORGRID_TEST_CACHE_DIR), since ctest runs each test in a process of its own and a
+/// suite's SetUpTestSuite would align it again for every test. EvaluateCommand, the report's and
+/// the viewer's browser tests read it; the folder is shared, so copy what a test changes. A
+/// failure fails the calling test with the script's output.
 std::filesystem::path shared_office_alignment();
 
 }  // namespace floorgrid::test
