@@ -8,18 +8,28 @@ FUZZ_DIR ?= build-fuzz
 FUZZ_SECONDS ?= 60
 SANITIZE_DIR ?= build-sanitize
 
-.PHONY: all deps configure build demo test bench format clean fuzz sanitize python
+.PHONY: all deps deps-demo configure build demo test bench format clean fuzz sanitize python
 
 all: build
+
+CMAKE_CONFIGURE = cmake -S . -B $(BUILD_DIR) -G Ninja -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) \
+  -DPython_EXECUTABLE=/usr/bin/python3
 
 deps:
 	@./scripts/install-deps.sh
 
-$(BUILD_DIR)/build.ninja: | deps
-	cmake -S . -B $(BUILD_DIR) -G Ninja -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) \
-	  -DPython_EXECUTABLE=/usr/bin/python3
+# Only what the floorgrid program needs: a fresh machine's first report waits for no test tool.
+deps-demo:
+	@./scripts/install-deps.sh --demo
 
-configure: deps $(BUILD_DIR)/build.ninja
+# Everything configured: tests, benchmarks and the Python module. A build folder that `make demo`
+# configured for the program alone gets them switched on here.
+configure: deps
+	@if [ ! -f $(BUILD_DIR)/build.ninja ] || \
+	    grep -q '^FLOORGRID_BUILD_TESTS:BOOL=OFF' $(BUILD_DIR)/CMakeCache.txt; then \
+	  $(CMAKE_CONFIGURE) -DFLOORGRID_BUILD_TESTS=ON -DFLOORGRID_BUILD_BENCH=ON \
+	    -DFLOORGRID_PYTHON=ON; \
+	fi
 
 build: configure
 	cmake --build $(BUILD_DIR) -j $(JOBS)
@@ -28,8 +38,13 @@ DATA ?= ../shared/data
 
 # The main job on the built-in default: simulate an office, align it (pairs, every model,
 # metrics, overlays), then show what real files look like to `info`. Only the floorgrid
-# program is built (not the tests and benchmarks the demo never runs).
-demo: configure
+# program is built, with only its own dependencies installed (not the test tools, tests and
+# benchmarks the demo never runs); a new build folder is configured without them.
+demo: deps-demo
+	@if [ ! -f $(BUILD_DIR)/build.ninja ]; then \
+	  $(CMAKE_CONFIGURE) -DFLOORGRID_BUILD_TESTS=OFF -DFLOORGRID_BUILD_BENCH=OFF \
+	    -DFLOORGRID_PYTHON=OFF; \
+	fi
 	cmake --build $(BUILD_DIR) -j $(JOBS) --target floorgrid
 	./$(BUILD_DIR)/floorgrid demo --out $(DEMO_OUT)
 	@if [ -d "$(DATA)" ]; then \

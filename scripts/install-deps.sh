@@ -1,37 +1,59 @@
 #!/usr/bin/env bash
-# Installs every dependency of floorgrid from Debian's packages. Idempotent: packages already
+# Installs the dependencies of floorgrid from Debian's packages. Idempotent: packages already
 # present are not touched, so a second run is quick and needs no network. Run as root.
+#
+#   scripts/install-deps.sh          everything: the build, the tests, benchmarks, fuzzing (make test)
+#   scripts/install-deps.sh --demo   only what the floorgrid program needs to build (make demo)
 set -euo pipefail
 
+mode=all
+case "${1:-}" in
+  "") ;;
+  --demo) mode=demo ;;
+  *)
+    echo "install-deps: unknown option '$1' (use --demo, or nothing for every dependency)" >&2
+    exit 2
+    ;;
+esac
+
+# What the floorgrid program needs: the toolchain and the libraries it links.
 packages=(
   # toolchain
-  build-essential cmake ninja-build pkg-config clang-format
+  build-essential cmake ninja-build pkg-config
   # libraries linked by floorgrid (all BSD/MIT/Apache/MPL compatible; no GPL)
   libeigen3-dev libnanoflann-dev libopencv-core-dev libopencv-imgproc-dev
-  libpng-dev zlib1g-dev libyaml-cpp-dev libdime-dev
+  libpng-dev zlib1g-dev libyaml-cpp-dev
   libcli11-dev nlohmann-json3-dev libfmt-dev libspdlog-dev libcpp-httplib-dev
   # robot-log containers: ROS 1 bags (bz2, lz4 chunks), MCAP (lz4, zstd), rosbag2 (sqlite3)
   liblz4-dev libzstd-dev libbz2-dev libsqlite3-dev
-  # tests and benchmarks
-  libgtest-dev libgmock-dev libbenchmark-dev
-  # the Python module (pybind11, Debian's /usr/bin/python3 and numpy) and its tests
-  pybind11-dev python3-dev python3-numpy python3-pytest
-  # OpenCV calib3d: only bench/ransac_bench links it (cv::estimateAffinePartial2D comparison)
-  libopencv-calib3d-dev
-  # independent DXF reader used only by tests (never linked)
-  python3-ezdxf
-  # independent writers of test bags (ROS 1: python3-rosbag and its message packages) and GDAL's
-  # tools that check the exported VRT (test tools only, never linked)
-  python3-rosbag python3-roslz4 python3-sensor-msgs python3-nav-msgs python3-tf2-msgs
-  python3-geometry-msgs gdal-bin
-  # the independent MCAP writer (tests/bags/write_mcap.mjs) runs on Node; its npm packages are
-  # pinned by tests/bags/package-lock.json and installed below (this image's nodejs brings npm)
-  nodejs
-  # the browser test of report.html (test tool only, driven by report/node_modules/playwright-core)
-  chromium
-  # make fuzz: libFuzzer from clang-16 (clang-14 cannot compile libstdc++ 12's <ranges>)
-  clang-16 libclang-rt-16-dev
 )
+# The report's uPlot and the viewer's Leaflet come from npm (below). Machines here come with
+# Node and npm; Debian's are installed only where npm is missing.
+if ! command -v npm >/dev/null; then
+  packages+=(nodejs npm)
+fi
+if [ "$mode" = all ]; then
+  packages+=(
+    # make format
+    clang-format
+    # tests and benchmarks; libdime (BSD) is a third, independent DXF reader in the tests only
+    libgtest-dev libgmock-dev libbenchmark-dev libdime-dev
+    # the Python module (pybind11, Debian's /usr/bin/python3 and numpy) and its tests
+    pybind11-dev python3-dev python3-numpy python3-pytest
+    # OpenCV calib3d: only bench/ransac_bench links it (cv::estimateAffinePartial2D comparison)
+    libopencv-calib3d-dev
+    # independent DXF reader used only by tests (never linked)
+    python3-ezdxf
+    # independent writers of test bags (ROS 1: python3-rosbag and its message packages) and
+    # GDAL's tools that check the exported VRT (test tools only, never linked)
+    python3-rosbag python3-roslz4 python3-sensor-msgs python3-nav-msgs python3-tf2-msgs
+    python3-geometry-msgs gdal-bin
+    # the browser tests of report.html and the viewer (driven by playwright-core from npm)
+    chromium
+    # make fuzz: libFuzzer from clang-16 (clang-14 cannot compile libstdc++ 12's <ranges>)
+    clang-16 libclang-rt-16-dev
+  )
+fi
 
 missing=()
 for p in "${packages[@]}"; do
@@ -43,6 +65,7 @@ done
 # npm packages of the test bag writers, installed once from the lock file: later runs find
 # tests/bags/node_modules and need no network. A failure only skips the MCAP writer's tests.
 install_bag_writers() {
+  [ "$mode" = all ] || return 0
   local bags
   bags="$(cd "$(dirname "$0")/.." && pwd)/tests/bags"
   if [ -d "$bags/node_modules/@mcap/core" ] || ! command -v npm >/dev/null; then
@@ -82,7 +105,7 @@ install_page_packages() {
 }
 
 if [ ${#missing[@]} -eq 0 ]; then
-  echo "install-deps: all ${#packages[@]} packages present"
+  echo "install-deps: all ${#packages[@]} packages present ($mode)"
   install_bag_writers
   install_page_packages
   exit 0
