@@ -193,36 +193,51 @@ void WallField::build_lookup(const std::vector<std::int32_t>& wall_of_cell, doub
   if (walls_.empty() || w == 0 || h == 0)
     return;
   // Walls are the zero pixels of OpenCV's transform; with per-pixel labels it also tells,
-  // for every cell, which zero pixel is nearest (a discrete Voronoi diagram).
-  cv::Mat source(h, w, CV_8UC1);
-  for (int iy = 0; iy < h; ++iy) {
-    auto* row = source.ptr<std::uint8_t>(iy);
-    for (int ix = 0; ix < w; ++ix)
-      row[ix] = wall_of_cell[static_cast<std::size_t>(iy) * w + ix] >= 0 ? 0 : 255;
-  }
-  cv::Mat distance, labels;
-  cv::distanceTransform(source, distance, labels, cv::DIST_L2, cv::DIST_MASK_5,
-                        cv::DIST_LABEL_PIXEL);
-  // Each wall pixel carries its own label: label -> wall index.
-  std::vector<std::int32_t> wall_of_label(geometry_.size() + 1, -1);
-  for (int iy = 0; iy < h; ++iy) {
-    const auto* label = labels.ptr<std::int32_t>(iy);
-    for (int ix = 0; ix < w; ++ix) {
-      const std::int32_t k = wall_of_cell[static_cast<std::size_t>(iy) * w + ix];
-      if (k >= 0 && label[ix] >= 0 && static_cast<std::size_t>(label[ix]) < wall_of_label.size())
-        wall_of_label[static_cast<std::size_t>(label[ix])] = k;
-    }
-  }
+  // for every cell, which zero pixel is nearest (a discrete Voronoi diagram). It runs on strips
+  // of rows, each with a margin beyond the cap above and below: a cell's nearest wall within
+  // the cap lies inside its strip's margin, and the transform's paths between the two stay in
+  // their bounding box, so each strip's answer is the whole map's while its buffers (the
+  // transform's own, about 20 bytes a cell) stay a strip's size, not a 250 m building's.
   const double max_cells = max_distance / geometry_.resolution;
-  for (int iy = 0; iy < h; ++iy) {
-    const auto* label = labels.ptr<std::int32_t>(iy);
-    const float* d = distance.ptr<float>(iy);
-    for (int ix = 0; ix < w; ++ix) {
-      if (d[ix] > max_cells || label[ix] < 0 ||
-          static_cast<std::size_t>(label[ix]) >= wall_of_label.size())
-        continue;
-      nearest_[static_cast<std::size_t>(iy) * w + ix] =
-          wall_of_label[static_cast<std::size_t>(label[ix])];
+  const int margin = static_cast<int>(std::min<double>(h, std::ceil(1.1 * max_cells) + 2.0));
+  constexpr int kStripRows = 256;
+  std::vector<std::int32_t> wall_of_label;
+  for (int y0 = 0; y0 < h; y0 += kStripRows) {
+    const int y1 = std::min(h, y0 + kStripRows);
+    const int top = std::max(0, y0 - margin), bottom = std::min(h, y1 + margin);
+    cv::Mat source(bottom - top, w, CV_8UC1);
+    for (int iy = top; iy < bottom; ++iy) {
+      auto* row = source.ptr<std::uint8_t>(iy - top);
+      for (int ix = 0; ix < w; ++ix) {
+        const std::int32_t k = wall_of_cell[static_cast<std::size_t>(iy) * w + ix];
+        row[ix] = k >= 0 ? 0 : 255;
+      }
+    }
+    if (cv::countNonZero(source) == source.rows * source.cols)
+      continue;  // no wall near these rows
+    cv::Mat distance, labels;
+    cv::distanceTransform(source, distance, labels, cv::DIST_L2, cv::DIST_MASK_5,
+                          cv::DIST_LABEL_PIXEL);
+    // Each wall pixel carries its own label: label -> wall index.
+    wall_of_label.assign(static_cast<std::size_t>(source.rows) * w + 1, -1);
+    for (int iy = top; iy < bottom; ++iy) {
+      const auto* label = labels.ptr<std::int32_t>(iy - top);
+      for (int ix = 0; ix < w; ++ix) {
+        const std::int32_t k = wall_of_cell[static_cast<std::size_t>(iy) * w + ix];
+        if (k >= 0 && label[ix] >= 0 && static_cast<std::size_t>(label[ix]) < wall_of_label.size())
+          wall_of_label[static_cast<std::size_t>(label[ix])] = k;
+      }
+    }
+    for (int iy = y0; iy < y1; ++iy) {
+      const auto* label = labels.ptr<std::int32_t>(iy - top);
+      const float* d = distance.ptr<float>(iy - top);
+      for (int ix = 0; ix < w; ++ix) {
+        if (d[ix] > max_cells || label[ix] < 0 ||
+            static_cast<std::size_t>(label[ix]) >= wall_of_label.size())
+          continue;
+        nearest_[static_cast<std::size_t>(iy) * w + ix] =
+            wall_of_label[static_cast<std::size_t>(label[ix])];
+      }
     }
   }
 }

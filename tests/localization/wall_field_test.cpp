@@ -5,6 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
+#include <random>
+#include <vector>
 
 #include "floorgrid/maps/rasterize.hpp"
 
@@ -67,6 +70,53 @@ TEST(WallField, ACornerHasNoClearNormal) {
   const WallPoint* w = field.nearest({0.01, 0.01});
   ASSERT_NE(w, nullptr);
   EXPECT_LT(w->normal.norm(), 1e-6) << "a corner's cell is matched point to point";
+}
+
+TEST(WallField, EveryCellOfATallMapFindsItsNearestWallAcrossTheStrips) {
+  // The lookup is built on strips of 256 rows: a map of several strips, sparse scattered
+  // walls, and every cell checked against brute force. The transform's 5x5 mask and its
+  // labels find a wall within 5% of the nearest's distance; wall points are floats.
+  GridGeometry geometry;
+  geometry.width = 30;
+  geometry.height = 700;
+  geometry.resolution = 0.05;
+  OccupancyGrid grid(geometry, CellState::free);
+  std::mt19937 random(7);
+  std::vector<Eigen::Vector2d> walls;
+  for (int iy = 0; iy < geometry.height; ++iy) {
+    for (int ix = 0; ix < geometry.width; ++ix) {
+      // Sparse walls, with a stretch without any across the second strip's border (rows
+      // 230-300) so that cells there find walls only beyond it.
+      const bool gap = iy >= 230 && iy < 300;
+      if (!gap && std::uniform_real_distribution<>(0.0, 1.0)(random) < 0.004) {
+        grid.set_state(ix, iy, CellState::occupied);
+        walls.push_back(geometry.cell_center(ix, iy));
+      }
+    }
+  }
+  WallFieldOptions options;
+  options.max_distance = 1.0;
+  const WallField field(grid, options);
+  int found = 0, beyond = 0;
+  for (int iy = 0; iy < geometry.height; ++iy) {
+    for (int ix = 0; ix < geometry.width; ++ix) {
+      const Eigen::Vector2d c = geometry.cell_center(ix, iy);
+      double truth = std::numeric_limits<double>::infinity();
+      for (const Eigen::Vector2d& w : walls)
+        truth = std::min(truth, (w - c).norm());
+      const WallPoint* w = field.nearest(c);
+      if (truth > 1.05 * options.max_distance) {
+        EXPECT_EQ(w, nullptr) << ix << " " << iy;
+        ++beyond;
+      } else if (truth < 0.95 * options.max_distance) {
+        ASSERT_NE(w, nullptr) << ix << " " << iy;
+        EXPECT_LE((w->point.cast<double>() - c).norm(), 1.05 * truth + 1e-4) << ix << " " << iy;
+        ++found;
+      }
+    }
+  }
+  EXPECT_GT(found, 10000);
+  EXPECT_GT(beyond, 100);  // the gap's middle rows
 }
 
 }  // namespace
