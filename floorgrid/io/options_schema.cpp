@@ -1568,7 +1568,8 @@ void visit(OptionVisitor& v, PairSourceOptions& o) {
   v.field("run_match_margin", o.run_match_margin,
           {.unit = "",
            .doc = "When they disagree, the run's pairs are kept only when the plan-match check "
-                  "scores them higher than the maps' by more than this (a tie goes to the maps)",
+                  "scores them higher than the maps' by more than this (a tie goes to the maps; "
+                  "negative: the run's are kept up to that much below)",
            .choices = {},
            .range = kScore});
 }

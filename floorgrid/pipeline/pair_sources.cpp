@@ -33,8 +33,8 @@ void validate(const PairSourceOptions& o, const std::string& prefix) {
                  prefix + "min_scale_tolerance", o.min_scale_tolerance, "in [0, 1)");
   require_option(o.fill_radius >= 0.0 && std::isfinite(o.fill_radius), prefix + "fill_radius",
                  o.fill_radius, ">= 0");
-  require_option(o.run_match_margin >= 0.0 && std::isfinite(o.run_match_margin),
-                 prefix + "run_match_margin", o.run_match_margin, ">= 0");
+  require_option(o.run_match_margin >= -1.0 && o.run_match_margin <= 1.0,
+                 prefix + "run_match_margin", o.run_match_margin, "in [-1, 1]");
 }
 
 double wall_coverage(const OccupancyGrid& gridmap, const Eigen::Matrix2Xd& points_in_grid,

@@ -45,7 +45,8 @@ struct PairSourceOptions {
   /// higher than the maps' by more than this. A tie goes to the maps: their alignment fits every
   /// wall at once, where a plan filter can slide along a corridor and still match the plan as
   /// well under one similarity (a real drawing's world on fr079, seed 2: the run's pairs 0.97 m
-  /// off, plan match 0.6027 against the maps' 0.6025).
+  /// off, plan match 0.6027 against the maps' 0.6025). Scores are in [-1, 1], and so is the
+  /// margin: a negative one keeps the run's pairs when they score up to that much below.
   double run_match_margin = 0.02;
   /// World metres: when the run's pairs are used and agree with the maps', the maps' pairs
   /// farther than this from every run pair are added: they place the walls the robot never

@@ -194,6 +194,13 @@ TEST(PairSources, WhenTheyDisagreeThePlanMatchDecides) {
   c = check_pair_sources(run_of(pairs, 2.0, 500, 0.5), &maps, map, {}, judge_maps_at(0.47));
   EXPECT_EQ(c.chosen, "run");
   EXPECT_TRUE(c.fallback.empty());
+  // A negative margin keeps the run's pairs up to that much below the maps'.
+  PairSourceOptions favour_run;
+  favour_run.run_match_margin = -0.05;
+  c = check_pair_sources(run_of(pairs, 2.0, 500, 0.5), &maps, map, favour_run, judge_maps_at(0.53));
+  EXPECT_EQ(c.chosen, "run");
+  c = check_pair_sources(run_of(pairs, 2.0, 500, 0.5), &maps, map, favour_run, judge_maps_at(0.56));
+  EXPECT_EQ(c.chosen, "maps");
 }
 
 TEST(PairSources, ARunThatFailedFallsBackOnTheMaps) {
@@ -216,6 +223,17 @@ TEST(PairSources, BadOptionsNameTheirField) {
     FAIL() << "not refused";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("align.sources.min_coverage"), std::string::npos);
+  }
+  // The margin's range is the scores' own, as `floorgrid config` documents it.
+  o = {};
+  o.run_match_margin = -0.1;
+  EXPECT_NO_THROW(validate(o));
+  o.run_match_margin = 1.5;
+  try {
+    validate(o);
+    FAIL() << "not refused";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("align.sources.run_match_margin"), std::string::npos);
   }
 }
 
