@@ -13,19 +13,23 @@ work=${1:-$(mktemp -d)}
 root="$work/root"
 here="$(cd "$(dirname "$0")/.." && pwd)"
 [ "$(id -u)" -eq 0 ] || { echo "fresh_machine: run as root" >&2; exit 1; }
-command -v debootstrap >/dev/null || { echo "fresh_machine: needs debootstrap (apt-get install debootstrap)" >&2; exit 1; }
+command -v debootstrap >/dev/null ||
+  { echo "fresh_machine: needs debootstrap (apt-get install debootstrap)" >&2; exit 1; }
 [ ! -e "$root" ] || { echo "fresh_machine: $root exists: give an empty work folder" >&2; exit 1; }
 mkdir -p "$work"
 
 mounts=()
 cleanup() {
-  for ((i = ${#mounts[@]} - 1; i >= 0; i--)); do umount -R -l "${mounts[$i]}" 2>/dev/null || true; done
+  for ((i = ${#mounts[@]} - 1; i >= 0; i--)); do
+    umount -R -l "${mounts[$i]}" 2>/dev/null || true
+  done
 }
 trap cleanup EXIT
 bind() { mkdir -p "$2"; mount "${@:3}" --rbind "$1" "$2"; mounts+=("$2"); }
 
 echo "fresh_machine: debootstrap into $root"
-debootstrap --variant=minbase bookworm "$root" http://deb.debian.org/debian > "$work/debootstrap.log" 2>&1
+debootstrap --variant=minbase bookworm "$root" http://deb.debian.org/debian \
+  > "$work/debootstrap.log" 2>&1
 cp /etc/apt/sources.list.d/debian.sources "$root/etc/apt/sources.list.d/" 2>/dev/null &&
   rm -f "$root/etc/apt/sources.list"
 cp /etc/resolv.conf "$root/etc/resolv.conf"

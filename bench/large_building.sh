@@ -3,7 +3,7 @@
 # 1 GB). The MIT log is not in ../shared/data, so two stand-ins, each aligned with
 # /usr/bin/time (wall seconds, peak resident memory) and metrics.json's per-stage peak:
 #   drawn  a drawing of a 250 x 236 m building (bench/large_building_plan.py: two crossing
-#          corridors lined with 300 rooms, 5000 x 4720 pixels), made a dataset by
+#          corridors lined with 150 rooms, 5000 x 4720 pixels), made a dataset by
 #          `simulate --from-plan` (a world built from it, a 1,586-scan tour, a drifted gridmap
 #          of what the robot saw): the plan is the large map.
 #   tiled  the office preset with its gridmap tiled 6 x 6 (5000 x 4720 cells, 250 x 236 m): the

@@ -1,13 +1,14 @@
 """Inputs of a 250 x 236 m building, the MIT infinite corridor's class (bench/large_building.sh).
 
   large_building_plan.py draw OUT.pgm
-      A drawing of such a building: two crossing corridors (3 m wide) lined with 8 m deep rooms,
-      6 m wide, each with a 1 m door; walls 0.2 m thick. PGM at 0.05 m a pixel (white free,
-      black walls): 5000 x 4720 pixels.
+      A drawing of such a building: two crossing corridors (3 m wide) lined with 150 rooms,
+      8 m deep and 6 m wide, each with a 1 m door; walls 0.2 m thick. PGM at 0.05 m a pixel
+      (white free, black walls): 5000 x 4720 pixels.
   large_building_plan.py tile GRIDMAP.yaml N
       The map_server gridmap tiled N x N times in place (image and YAML rewritten, the origin
       kept): a gridmap N times as wide and high, whose run and plan cover one tile.
 """
+import os
 import sys
 
 import numpy as np
@@ -93,7 +94,6 @@ def read_pgm(path):
 
 
 def tile(yaml_path, n):
-    import os
     folder = os.path.dirname(yaml_path)
     image = None
     for line in open(yaml_path):

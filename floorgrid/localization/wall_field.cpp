@@ -206,14 +206,16 @@ void WallField::build_lookup(const std::vector<std::int32_t>& wall_of_cell, doub
     const int y1 = std::min(h, y0 + kStripRows);
     const int top = std::max(0, y0 - margin), bottom = std::min(h, y1 + margin);
     cv::Mat source(bottom - top, w, CV_8UC1);
+    bool any_wall = false;
     for (int iy = top; iy < bottom; ++iy) {
       auto* row = source.ptr<std::uint8_t>(iy - top);
       for (int ix = 0; ix < w; ++ix) {
-        const std::int32_t k = wall_of_cell[static_cast<std::size_t>(iy) * w + ix];
-        row[ix] = k >= 0 ? 0 : 255;
+        const bool wall = wall_of_cell[static_cast<std::size_t>(iy) * w + ix] >= 0;
+        row[ix] = wall ? 0 : 255;
+        any_wall = any_wall || wall;
       }
     }
-    if (cv::countNonZero(source) == source.rows * source.cols)
+    if (!any_wall)
       continue;  // no wall near these rows
     cv::Mat distance, labels;
     cv::distanceTransform(source, distance, labels, cv::DIST_L2, cv::DIST_MASK_5,
