@@ -1583,6 +1583,19 @@ void visit(OptionVisitor& v, DualLocalizerOptions& o) {
           {.unit = "",
            .doc = "Match scans onto the plan by the beams that reach its first wall",
            .choices = {}});
+  enum_field(v, "plan_wall_line", o.plan_wall_line,
+             {{"auto", PlanWallLine::automatic},
+              {"cell_centres", PlanWallLine::cell_centres},
+              {"ink_edges", PlanWallLine::ink_edges}},
+             "Where scans meet a raster plan's walls: its ink cells' centres (a plan traced over "
+             "a gridmap), its ink's edges (walls filled in as built or thicker than drawn), or "
+             "auto (the edges where the maps' faces lie ink_edge_min_offset off the strokes)");
+  v.field("ink_edge_min_offset", o.ink_edge_min_offset,
+          {.unit = "m",
+           .doc = "With plan_wall_line auto: the partitions' faces this far off their strokes "
+                  "(the maps' faces fit, world metres) mean the ink's edges",
+           .choices = {},
+           .range = kNonNegative});
   v.field("refine_poses", o.refine_poses,
           {.unit = "",
            .doc = "Pairs only from scans whose scan match succeeded on both maps",

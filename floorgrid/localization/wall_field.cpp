@@ -184,7 +184,14 @@ double WallField::distance(const Eigen::Vector2d& point_in_map) const {
     return std::numeric_limits<double>::infinity();
   const Eigen::Vector2d offset = point_in_map - wall->point.cast<double>();
   const Eigen::Vector2d n = wall->normal.cast<double>();
-  return n.squaredNorm() > 0.5 ? std::abs(n.dot(offset)) : offset.norm();
+  const double d = n.squaredNorm() > 0.5 ? std::abs(n.dot(offset)) : offset.norm();
+  return std::max(0.0, d - surface_offset_);
+}
+
+void WallField::set_surface_offset(double metres) {
+  if (!(metres >= 0.0 && metres <= geometry_.resolution))
+    throw InputError("must be in [0, one cell]", {}, 0, "wall_field.surface_offset");
+  surface_offset_ = metres;
 }
 
 void WallField::build_lookup(const std::vector<std::int32_t>& wall_of_cell, double max_distance) {

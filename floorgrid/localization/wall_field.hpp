@@ -78,10 +78,26 @@ class WallField {
     const std::int32_t k = nearest_[static_cast<std::size_t>(iy) * geometry_.width + ix];
     return k < 0 ? nullptr : &walls_[static_cast<std::size_t>(k)];
   }
-  /// Map metres from `point_in_map` to the nearest wall: along the wall's normal where it has
-  /// one (the distance to the wall's line), else to the wall point; +infinity when nearest()
-  /// finds nothing.
+  /// Map metres from `point_in_map` to the nearest wall's surface: along the wall's normal where
+  /// it has one (the distance to the wall's line), else to the wall point, less surface_offset()
+  /// (0 inside it); +infinity when nearest() finds nothing.
   double distance(const Eigen::Vector2d& point_in_map) const;
+  /// Map metres from a wall point to the surface a laser meets, on the side it looks from: 0
+  /// where the wall lies on its cells' centres (a gridmap, whose hits lie anywhere in their
+  /// cells; a vector plan's exact walls), half a cell where its cells' edges are its faces (a
+  /// raster drawing's ink; WallSurfaceField::Line::surface).
+  double surface_offset() const { return surface_offset_; }
+  /// Sets surface_offset(), in [0, one cell]; throws InputError otherwise.
+  void set_surface_offset(double metres);
+  /// The residual of `point` against `wall` along its normal (point to line), measured from
+  /// the surface on the side of `viewpoint` (the laser): positive in front of that surface.
+  double surface_residual(const WallPoint& wall, const Eigen::Vector2d& point,
+                          const Eigen::Vector2d& viewpoint) const {
+    const Eigen::Vector2d w = wall.point.cast<double>();
+    const Eigen::Vector2d n = wall.normal.cast<double>();
+    const double r = n.dot(point - w);
+    return (viewpoint - w).dot(n) >= 0.0 ? r - surface_offset_ : r + surface_offset_;
+  }
   /// Every wall point (one per occupied cell).
   const std::vector<WallPoint>& walls() const { return walls_; }
   /// The grid's geometry.
@@ -96,6 +112,7 @@ class WallField {
   GridGeometry geometry_;
   std::vector<WallPoint> walls_;
   std::vector<std::int32_t> nearest_;  // per cell: index into walls_, or -1
+  double surface_offset_ = 0.0;        // metres, see surface_offset()
 };
 
 }  // namespace floorgrid

@@ -272,6 +272,13 @@ struct ScaleRefitOptions {
   int max_plan_passes = 2;
 };
 
+/// Where the scan matchers meet a raster plan's walls (DualLocalizerOptions::plan_wall_line).
+enum class PlanWallLine {
+  cell_centres,  ///< at its ink cells' centres
+  ink_edges,     ///< at its ink's edges: half a plan cell off the centres, on the laser's side
+  automatic,     ///< at the ink's edges where the maps' faces say so (ink_edge_min_offset)
+};
+
 /// Every setting of the dual localization (defaults in one place).
 struct DualLocalizerOptions {
   MapFilterOptions plan = default_plan_options();  ///< the filter on the floorplan
@@ -293,6 +300,18 @@ struct DualLocalizerOptions {
   /// (FilterRunnerOptions::beam_tolerance): the endpoints on furniture a plan lacks would pull
   /// the match towards the walls behind.
   bool plan_beam_consistency = true;
+  /// Where the scan matchers meet a raster plan's walls (WallField::surface_offset). At the
+  /// ink's edges is right for a drawing whose walls are filled in as thick as built or thicker
+  /// than drawn (an architect's drawing): the laser meets the ink's edge or lies in front of it,
+  /// and matched onto the cells' centres a scan stops half a cell short of every wall ahead,
+  /// pulling the plan's poses forward (a 180-degree laser sees no wall behind). At the cells'
+  /// centres is right for a plan traced over a gridmap's occupied cells, whose ink reaches half
+  /// a cell in front of the surfaces the laser met. A vector plan's walls are exact either way.
+  PlanWallLine plan_wall_line = PlanWallLine::automatic;
+  /// World metres: with PlanWallLine::automatic, the ink's edges are used when the maps' faces
+  /// fit found the partitions' faces at least this far off their strokes (the simulated
+  /// architects' drawings: 0.059-0.130 m; plans traced over gridmaps: 0.026-0.049 m).
+  double ink_edge_min_offset = 0.055;
   /// Pairs only from scans whose scan match succeeded on both maps (the refined poses), and
   /// never from a scan whose match is degenerate in either (a corridor, an aisle).
   bool refine_poses = true;

@@ -1,6 +1,10 @@
 #include "floorgrid/pipeline/dual_maps.hpp"
 
+#include <fmt/format.h>
+
 #include <chrono>
+
+#include "floorgrid/pipeline/map_alignment.hpp"
 
 namespace floorgrid {
 
@@ -34,18 +38,43 @@ VisibleWalls find_visible_walls(const OccupancyGrid& plan, const PlanLocationOpt
 }
 
 /// The plan's walls to match scans onto: a DXF plan's exact walls when given, else the plan
-/// grid's occupied cells; one-sided where the visible walls found the rooms.
+/// grid's occupied cells, met at the ink's edges when `at_ink_edges`; one-sided where the
+/// visible walls found the rooms.
 WallField plan_wall_field(const DualLocalizerInputs& inputs, const OccupancyGrid& plan,
-                          const VisibleWalls& visible, const WallFieldOptions& options) {
+                          const VisibleWalls& visible, const WallFieldOptions& options,
+                          bool at_ink_edges) {
   const std::vector<std::uint8_t>* rooms = visible.applied ? &visible.room : nullptr;
   if (inputs.plan_geometry) {
     return WallField(*inputs.plan_geometry, plan.geometry(), options,
                      visible.applied ? &visible.grid : nullptr, rooms);
   }
-  return WallField(plan, options, rooms);
+  WallField walls(plan, options, rooms);
+  if (at_ink_edges)
+    walls.set_surface_offset(0.5 * plan.geometry().resolution);
+  return walls;
 }
 
 }  // namespace
+
+bool plan_walls_at_ink_edges(const DualLocalizerInputs& inputs, const DualLocalizerOptions& options,
+                             std::vector<std::string>& notes) {
+  if (inputs.plan_geometry || options.plan_wall_line == PlanWallLine::cell_centres)
+    return false;
+  if (options.plan_wall_line == PlanWallLine::ink_edges)
+    return true;
+  if (!inputs.maps || inputs.maps->faces.partition_points == 0)
+    return false;
+  // The faces' offsets are in plan metres; the registration maps world metres to plan metres.
+  const double plan_per_world = inputs.maps->registration.best.transform.scale;
+  const double offset = inputs.maps->faces.partition_offset / plan_per_world;
+  if (!(offset >= options.ink_edge_min_offset))
+    return false;
+  notes.push_back(fmt::format(
+      "the plan's walls are met at the ink's edges: the partitions' faces lie {:.3f} m off their "
+      "strokes (walls drawn no thicker than built)",
+      offset));
+  return true;
+}
 
 MapModel::MapModel(const OccupancyGrid& map, const LikelihoodFieldOptions& likelihood,
                    ObservationModelKind kind, const BeamModelOptions& beam)
@@ -65,7 +94,8 @@ DualMaps::DualMaps(const DualLocalizerInputs& inputs, const DualLocalizerOptions
       gridmap_(inputs.gridmap),
       plan_model_(*plan_, options.plan.likelihood, options.plan.model, options.beam),
       grid_model_(gridmap_, options.grid.likelihood, options.grid.model, options.beam),
-      plan_walls_(plan_wall_field(inputs, *plan_, visible_, options.walls)),
+      plan_walls_(plan_wall_field(inputs, *plan_, visible_, options.walls,
+                                  plan_walls_at_ink_edges(inputs, options, notes))),
       grid_walls_(gridmap_, options.walls),
       log_(inputs.log),
       plan_observation_(options.plan.observation),

@@ -70,6 +70,13 @@ class DualMaps {
   ObservationOptions plan_observation_, grid_observation_;
 };
 
+/// Whether the scan matchers meet a raster plan's walls at its ink's edges
+/// (DualLocalizerOptions::plan_wall_line): never for a vector plan; with automatic, where the
+/// maps' faces fit (inputs.maps) found the partitions' faces at least ink_edge_min_offset world
+/// metres off their strokes, saying so in `notes`.
+bool plan_walls_at_ink_edges(const DualLocalizerInputs& inputs, const DualLocalizerOptions& options,
+                             std::vector<std::string>& notes);
+
 /// Reports progress every few scans (and at the last).
 void report_progress(const DualProgressCallback& progress, const char* phase, std::size_t done,
                      std::size_t total, bool converged, std::size_t pairs = 0);

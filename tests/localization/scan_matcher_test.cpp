@@ -73,6 +73,52 @@ TEST(ScanMatcher, AScanThatDoesNotFitIsRefused) {
   EXPECT_FALSE(limited.ok());
 }
 
+// A room drawn in ink as a raster plan: 0.3 m thick walls whose cells lie wholly outside the
+// room's 10 x 8 m inside, so the ink's edges are the faces the laser meets.
+OccupancyGrid inked_room() {
+  GridGeometry g;
+  g.resolution = 0.1;
+  g.width = 120;
+  g.height = 100;
+  g.origin = {-1.0, -1.0, 0.0};
+  OccupancyGrid ink(g, CellState::free);
+  for (int iy = 0; iy < g.height; ++iy) {
+    for (int ix = 0; ix < g.width; ++ix) {
+      const Eigen::Vector2d c = g.cell_center(ix, iy);
+      const bool inside = c.x() > 0.0 && c.x() < 10.0 && c.y() > 0.0 && c.y() < 8.0;
+      const bool near = c.x() > -0.3 && c.x() < 10.3 && c.y() > -0.3 && c.y() < 8.3;
+      if (near && !inside)
+        ink.set_cell(ix, iy, CellState::occupied, kOccupancyOccupied);
+    }
+  }
+  return ink;
+}
+
+TEST(ScanMatcher, MeetsARasterPlansWallsAtTheInksEdge) {
+  VectorFloorplan room;
+  room.add_segment({0, 0}, {10, 0}, "W");
+  room.add_segment({10, 0}, {10, 8}, "W");
+  room.add_segment({10, 8}, {0, 8}, "W");
+  room.add_segment({0, 8}, {0, 0}, "W");
+  const OccupancyGrid ink = inked_room();
+  WallField centres(ink);
+  WallField edges(ink);
+  edges.set_surface_offset(0.5 * ink.geometry().resolution);
+  // Facing the far wall with a 180-degree laser: matched onto the cells' centres, every wall
+  // ahead lies half a cell (5 cm) deeper than the laser saw it, and the match stops short of
+  // the truth by about that; matched onto the ink's edges it finds the truth.
+  for (const Pose2& truth : {Pose2{6.0, 4.0, 0.0}, Pose2{4.0, 3.0, 2.0}}) {
+    const ScanObservation scan = scan_of(room, truth);
+    const Pose2 start = truth.compose({0.1, 0.05, 0.02});
+    const ScanMatch on_edges = match_scan(edges, scan, start, 1.0);
+    ASSERT_TRUE(on_edges.ok()) << to_string(on_edges.failure);
+    EXPECT_LT((on_edges.pose.translation() - truth.translation()).norm(), 0.015);
+    const ScanMatch on_centres = match_scan(centres, scan, start, 1.0);
+    const Eigen::Vector2d ahead(std::cos(truth.theta), std::sin(truth.theta));
+    EXPECT_GT(ahead.dot(on_centres.pose.translation() - truth.translation()), 0.03);
+  }
+}
+
 TEST(ScanMatcher, RefusesBadOptions) {
   ScanMatchOptions options;
   options.min_correspondence = 1.0;  // above max_correspondence

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "floorgrid/maps/rasterize.hpp"
+#include "tests/support/expect_error.hpp"
 
 namespace floorgrid {
 namespace {
@@ -59,6 +60,34 @@ TEST(WallField, GridWallsGiveTheNearestOccupiedCellAndItsNormal) {
     EXPECT_NEAR(w->point.y(), 2.0, grid.resolution());
     EXPECT_NEAR(std::abs(w->normal.y()), 1.0, 1e-3);
   }
+}
+
+TEST(WallField, ASurfaceOffsetMovesTheWallsFacesOffItsCells) {
+  const VectorFloorplan plan = one_wall();
+  const OccupancyGrid grid = grid_of(plan);
+  const WallField centres(grid);
+  WallField faces(grid);
+  const double half = 0.5 * grid.resolution();
+  faces.set_surface_offset(half);
+  EXPECT_EQ(faces.surface_offset(), half);
+  for (const double dy : {-0.3, 0.2}) {
+    const Eigen::Vector2d p(5.0, 2.0 + dy);
+    EXPECT_NEAR(faces.distance(p), centres.distance(p) - half, 1e-6);
+    // The residual is measured from the face on the viewpoint's side.
+    const WallPoint* w = faces.nearest(p);
+    ASSERT_NE(w, nullptr);
+    const Eigen::Vector2d n = w->normal.cast<double>();
+    const Eigen::Vector2d viewpoint = p + 3.0 * (p - w->point.cast<double>());
+    const double r = faces.surface_residual(*w, p, viewpoint);
+    EXPECT_NEAR(std::abs(r), std::abs(n.dot(p - w->point.cast<double>())) - half, 1e-6);
+  }
+  // Inside the wall's cell the distance is 0, not negative.
+  const WallPoint* w = faces.nearest({5.0, 2.0});
+  ASSERT_NE(w, nullptr);
+  EXPECT_EQ(faces.distance(w->point.cast<double>()), 0.0);
+  test::expect_input_error([&] { faces.set_surface_offset(2.0 * grid.resolution()); },
+                           {"surface_offset"});
+  test::expect_input_error([&] { faces.set_surface_offset(-0.01); }, {"surface_offset"});
 }
 
 TEST(WallField, ACornerHasNoClearNormal) {
