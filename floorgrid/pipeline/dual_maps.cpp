@@ -71,7 +71,7 @@ bool plan_walls_at_ink_edges(const DualLocalizerInputs& inputs, const DualLocali
     return false;
   notes.push_back(fmt::format(
       "the plan's walls are met at the ink's edges: the partitions' faces lie {:.3f} m off their "
-      "strokes (walls drawn no thicker than built)",
+      "strokes (walls thicker than their ink)",
       offset));
   return true;
 }
