@@ -25,20 +25,36 @@ void append_filter(std::string& out, const FilterRecord& r) {
   fmt::format_to(std::back_inserter(out), ",{}", r.estimate.scale);
 }
 
+/// The scan matched pose (the one pairs are made from) when the match was accepted, else empty
+/// fields.
+void append_matched(std::string& out, const FilterRecord& r) {
+  if (r.matched && r.match.ok()) {
+    fmt::format_to(std::back_inserter(out), ",{},{},{}", r.match.pose.x, r.match.pose.y,
+                   r.match.pose.theta);
+  } else {
+    out += ",,,";
+  }
+}
+
 }  // namespace
 
 void write_scans_csv(const DualLocalization& localization, const RobotLog& log,
                      const std::filesystem::path& path) {
   std::string out =
       "scan,time,plan_x,plan_y,plan_theta,plan_state,plan_converged,plan_fit,plan_scale,grid_x,"
-      "grid_y,grid_theta,grid_state,grid_converged,grid_fit,grid_scale,consistent,pairs\n";
-  out.reserve(out.size() + localization.scans.size() * 160);
+      "grid_y,grid_theta,grid_state,grid_converged,grid_fit,grid_scale,consistent,pairs,"
+      "plan_matched_x,plan_matched_y,plan_matched_theta,grid_matched_x,grid_matched_y,"
+      "grid_matched_theta\n";
+  out.reserve(out.size() + localization.scans.size() * 240);
   for (const ScanRecord& r : localization.scans) {
     const double time = r.scan < log.scans.size() ? log.scans[r.scan].timestamp : std::nan("");
     fmt::format_to(std::back_inserter(out), "{},{}", r.scan, time);
     append_filter(out, r.plan);
     append_filter(out, r.grid);
-    fmt::format_to(std::back_inserter(out), ",{},{}\n", r.consistent ? 1 : 0, r.pairs);
+    fmt::format_to(std::back_inserter(out), ",{},{}", r.consistent ? 1 : 0, r.pairs);
+    append_matched(out, r.plan);
+    append_matched(out, r.grid);
+    out += '\n';
   }
   write_file_atomically(path, out);
 }

@@ -46,6 +46,12 @@ TEST(ScansCsv, OneRowPerScanWithEachFiltersPoseStateAndFit) {
   l.scans[1].grid.fit = 0.5;
   l.scans[1].consistent = false;
   l.scans[1].pairs = 17;
+  // The plan's scan match was accepted (the pose pairs are made from); the gridmap's was not.
+  l.scans[1].plan.matched = true;
+  l.scans[1].plan.match.pose = {1.625, -2.125, 0.5};
+  l.scans[1].grid.matched = true;
+  l.scans[1].grid.match.failure = ScanMatchFailure::degenerate;
+  l.scans[1].grid.match.pose = {9.0, 9.0, 9.0};
   test::TempDir dir;
   write_scans_csv(l, log, dir / "scans.csv");
   const std::vector<std::string> lines = lines_of(dir / "scans.csv");
@@ -53,11 +59,13 @@ TEST(ScansCsv, OneRowPerScanWithEachFiltersPoseStateAndFit) {
   EXPECT_EQ(lines[0],
             "scan,time,plan_x,plan_y,plan_theta,plan_state,plan_converged,plan_fit,plan_scale,"
             "grid_x,grid_y,grid_theta,grid_state,grid_converged,grid_fit,grid_scale,consistent,"
-            "pairs");
-  // No fit where the map could not tell.
-  EXPECT_EQ(lines[1], "0,10.5,0,0,0,global,0,,1,0,0,0,global,0,0.1250,1,1,0");
+            "pairs,plan_matched_x,plan_matched_y,plan_matched_theta,grid_matched_x,"
+            "grid_matched_y,grid_matched_theta");
+  // No fit where the map could not tell, no matched pose where no match was accepted.
+  EXPECT_EQ(lines[1], "0,10.5,0,0,0,global,0,,1,0,0,0,global,0,0.1250,1,1,0,,,,,,");
   EXPECT_EQ(lines[2],
-            "1,11.25,1.5,-2,0.25,tracking,1,0.7500,1.5,3,4,-1,recovering,0,0.5000,1,0,17");
+            "1,11.25,1.5,-2,0.25,tracking,1,0.7500,1.5,3,4,-1,recovering,0,0.5000,1,0,17,"
+            "1.625,-2.125,0.5,,,");
 }
 
 TEST(ScansCsv, TheGridTrackReadBackIsTheTrackingFiltersPosesAtTheirTimes) {
