@@ -1036,7 +1036,8 @@ void visit(OptionVisitor& v, PairExtractionOptions& o) {
           {.unit = "m", .doc = "Longer readings make no pairs", .choices = {}, .range = kPositive});
   v.field("max_wall_distance", o.max_wall_distance,
           {.unit = "m",
-           .doc = "An endpoint must lie this close to an occupied cell of each map",
+           .doc = "An endpoint must lie this close to a wall of each map (WallField::distance: "
+                  "a raster plan's ink edge where scans meet it there)",
            .choices = {},
            .range = kPositive});
 }

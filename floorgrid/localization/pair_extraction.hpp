@@ -18,8 +18,9 @@ struct PairExtractionOptions {
   /// Metres: longer readings are not used (a filter's heading error moves an endpoint by the
   /// range times the error, so far endpoints make poor pairs); counted as `too_far`.
   double max_range = 10.0;
-  double max_wall_distance = 0.10;  ///< metres (world): an endpoint must lie this close to an
-                                    ///< occupied cell of each map (drops furniture hits)
+  /// Metres (world): an endpoint must lie this close to a wall of each map (WallField::distance,
+  /// so to a raster plan's ink edge where its WallField meets walls there; drops furniture hits).
+  double max_wall_distance = 0.10;
 };
 
 /// Why endpoints did not become pairs, counted (metrics.json `pairs.rejected.<reason>`).

@@ -107,26 +107,22 @@ Linearization linearize(const WallField& walls, const ScanObservation& scan, con
     if (wall->one_sided && (laser - wall->point.cast<double>()).dot(n) <= 0.0)
       continue;
     const Eigen::Vector2d dp_dtheta(-u * v.y(), u * v.x());
-    if (n.squaredNorm() > 0.5) {
-      const double r = walls.surface_residual(*wall, p, laser);
-      add_row(l, {n.x(), n.y(), n.dot(dp_dtheta)}, n.dot(v), r,
-              robust_weight(r, options.robust_scale));
-      if (std::abs(r) < options.inlier_distance) {
-        ++l.inliers;
-        l.inlier_square_sum += r * r;
-        l.normals.noalias() += n * n.transpose();
-      }
-    } else if (walls.surface_offset() > 0.0 && distance > 0.0) {
-      // A post or corner whose surface lies surface_offset() off its point: point to the
-      // circle's tangent facing the endpoint.
-      const Eigen::Vector2d d = err / distance;
-      const double r = distance - walls.surface_offset();
+    const bool line = n.squaredNorm() > 0.5;
+    if (line || (walls.surface_offset() > 0.0 && distance > 0.0)) {
+      // Point to line: the wall's line, or for a post or corner whose surface lies
+      // surface_offset() off its point, that circle's tangent facing the endpoint.
+      const Eigen::Vector2d d = line ? n : Eigen::Vector2d(err / distance);
+      const double r =
+          line ? walls.surface_residual(*wall, p, laser) : distance - walls.surface_offset();
       add_row(l, {d.x(), d.y(), d.dot(dp_dtheta)}, d.dot(v), r,
               robust_weight(r, options.robust_scale));
       if (std::abs(r) < options.inlier_distance) {
         ++l.inliers;
         l.inlier_square_sum += r * r;
-        l.normals += 0.5 * Eigen::Matrix2d::Identity();
+        if (line)
+          l.normals.noalias() += n * n.transpose();
+        else
+          l.normals += 0.5 * Eigen::Matrix2d::Identity();
       }
     } else {
       const double w = robust_weight(distance, options.robust_scale);

@@ -96,6 +96,8 @@ class WallField {
     const Eigen::Vector2d w = wall.point.cast<double>();
     const Eigen::Vector2d n = wall.normal.cast<double>();
     const double r = n.dot(point - w);
+    if (surface_offset_ == 0.0)
+      return r;  // a gridmap's or a vector plan's walls: no side to tell
     return (viewpoint - w).dot(n) >= 0.0 ? r - surface_offset_ : r + surface_offset_;
   }
   /// Every wall point (one per occupied cell).
