@@ -130,6 +130,17 @@ json metrics_json(const Alignment& a, const std::string& dataset, const Alignmen
   pairs["noise_rms_m"] =
       a.pair_noise ? number(std::sqrt(a.pair_noise->mean_square_m2)) : json(nullptr);
   pairs["noise_differences"] = a.pair_noise ? a.pair_noise->differences : 0;
+  // How far the plan's poses stood ahead of the gridmap's along the robot's heading, from
+  // revisits; `applied`: taken out of the pairs.
+  if (const auto& pull = l.pose_pull) {
+    pairs["pose_pull"] = {{"along_m", number(pull->along_m)},
+                          {"std_m", number(pull->std_m)},
+                          {"scans", pull->scans},
+                          {"comparisons", pull->comparisons},
+                          {"applied", pull->applied}};
+  } else {
+    pairs["pose_pull"] = nullptr;
+  }
   // The pairs above are the ones the models were fitted on: slid along their walls, when
   // they were; the filters' own are in pairs-localized.csv.
   if (a.wall_slide) {
@@ -227,6 +238,10 @@ json metrics_json(const Alignment& a, const std::string& dataset, const Alignmen
   j["plan_scale"] = number(l.plan_scale);
   j["plan_scale_std"] = number(l.plan_scale_std);
   j["plan_scale_estimated"] = l.plan_scale_estimated;
+  // How far the plan walls' faces lay in front of where the matchers met them (world metres),
+  // fitted with the scale.
+  j["plan_surface_shift_m"] = number(l.plan_surface_shift);
+  j["plan_surface_shift_std_m"] = number(l.plan_surface_shift_std);
   if (!floorplan_units.is_null())
     j["floorplan_units"] = floorplan_units;
   j["localization"] = {{"grid_start_scan", l.grid_start_scan},

@@ -969,6 +969,45 @@ void visit(OptionVisitor& v, MappingOptions& o) {
           [&] { visit(v, o.uncertainty); });
 }
 
+void visit(OptionVisitor& v, PosePullOptions& o) {
+  v.field("enabled", o.enabled,
+          {.unit = "",
+           .doc = "Measure how far the plan's poses stand ahead of the gridmap's along the "
+                  "robot's heading, from places revisited facing another way, and take it out "
+                  "of the pairs when it is measured well (false: the pairs as matched)",
+           .choices = {}});
+  v.field("radius", o.radius,
+          {.unit = "m",
+           .doc = "Two scans whose gridmap poses lie this close are at one place",
+           .choices = {},
+           .range = kPositive});
+  v.field("min_turn", o.min_turn,
+          {.unit = "rad",
+           .doc = "... and their headings differ by at least this much",
+           .choices = {},
+           .range = between(0.1, 3.14159)});
+  v.field("min_time_apart", o.min_time_apart,
+          {.unit = "s",
+           .doc = "... and they are at least this far apart in time",
+           .choices = {},
+           .range = kNonNegative});
+  v.field("min_scans", o.min_scans,
+          {.unit = "",
+           .doc = "Scans compared with a revisit needed before the pull is taken out",
+           .choices = {},
+           .range = at_least(1)});
+  v.field("max_std", o.max_std,
+          {.unit = "m",
+           .doc = "The pull is taken out only when its standard error is at most this",
+           .choices = {},
+           .range = kNonNegative});
+  v.field("max_pull", o.max_pull,
+          {.unit = "m",
+           .doc = "... and it is at most this large",
+           .choices = {},
+           .range = kNonNegative});
+}
+
 void visit(OptionVisitor& v, OutlierScanOptions& o) {
   v.field("enabled", o.enabled,
           {.unit = "",
@@ -1046,6 +1085,17 @@ void visit(OptionVisitor& v, ScaleRefitOptions& o) {
   v.field(
       "enabled", o.enabled,
       {.unit = "", .doc = "Refit the scale jointly with the refined plan poses", .choices = {}});
+  enum_field(v, "surface_shift", o.surface_shift,
+             {{"auto", SurfaceShift::automatic},
+              {"always", SurfaceShift::always},
+              {"never", SurfaceShift::never}},
+             "Fit with the scale a shift of every plan wall's surface towards the laser (faces in "
+             "front of the drawn lines): auto for a vector plan, whose walls are lines");
+  v.field("refit_registered_scale", o.refit_registered_scale,
+          {.unit = "",
+           .doc = "Refit also a scale the maps' registration gave, where the surface shift is "
+                  "fitted",
+           .choices = {}});
   v.field("min_scans", o.min_scans,
           {.unit = "",
            .doc = "Matched scans the refit needs, else the search's scale stays",
@@ -1612,6 +1662,10 @@ void visit(OptionVisitor& v, DualLocalizerOptions& o) {
   v.group("dual_check", "Step 4", [&] { visit(v, o.dual_check); });
   v.group("scale_refit", "Step 5", [&] { visit(v, o.scale_refit); });
   v.group("pairs", "How endpoints become pairs", [&] { visit(v, o.pairs); });
+  v.group("pose_pull",
+          "The plan poses' pull along the robot's heading, measured from revisits and taken "
+          "out of the pairs",
+          [&] { visit(v, o.pose_pull); });
   v.group("outlier_scans",
           "Scans whose pairs disagree with the other scans' at the same walls are dropped",
           [&] { visit(v, o.outlier_scans); });

@@ -45,6 +45,7 @@ void visit(OptionVisitor& v, MappingOptions& o);
 void visit(OptionVisitor& v, ModelComparisonOptions& o);
 void visit(OptionVisitor& v, MotionNoise& o);
 void visit(OptionVisitor& v, ObservationOptions& o);
+void visit(OptionVisitor& v, PosePullOptions& o);
 void visit(OptionVisitor& v, OutlierScanOptions& o);
 void visit(OptionVisitor& v, PairExtractionOptions& o);
 void visit(OptionVisitor& v, ParticleFilterOptions& o);

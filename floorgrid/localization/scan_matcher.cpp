@@ -50,14 +50,16 @@ std::string_view to_string(ScanMatchFailure failure) {
 
 namespace {
 
-/// One scan's normal equations at a pose and inverse scale u = 1 / scale, for the pose
-/// parameters (x, y, theta) and u: [A c; c^T d] [dpose; du] = -[b; e].
+/// One scan's normal equations at a pose, for the pose parameters (x, y, theta) and two
+/// parameters shared by every scan, g = (u, shift): the inverse scale u = 1 / scale and the
+/// shift of the walls' surfaces towards the laser (map metres):
+/// [A C; C^T D] [dpose; dg] = -[b; e].
 struct Linearization {
   Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
   Eigen::Vector3d b = Eigen::Vector3d::Zero();
-  Eigen::Vector3d c = Eigen::Vector3d::Zero();
-  double d = 0.0;
-  double e = 0.0;
+  Eigen::Matrix<double, 3, 2> C = Eigen::Matrix<double, 3, 2>::Zero();
+  Eigen::Matrix2d D = Eigen::Matrix2d::Zero();
+  Eigen::Vector2d e = Eigen::Vector2d::Zero();
   std::size_t inliers = 0;
   double inlier_square_sum = 0.0;
   Eigen::Matrix2d normals = Eigen::Matrix2d::Zero();  // sum over inliers of n n^T (or I / 2)
@@ -78,16 +80,22 @@ double robust_weight(double r, double c) {
   return k * k;
 }
 
-void add_row(Linearization& l, const Eigen::Vector3d& j, double ju, double r, double w) {
+/// Adds one residual r with weight w: its Jacobian j on the pose and jg on (u, shift).
+void add_row(Linearization& l, const Eigen::Vector3d& j, const Eigen::Vector2d& jg, double r,
+             double w) {
   l.A.noalias() += w * j * j.transpose();
   l.b += w * r * j;
-  l.c += w * ju * j;
-  l.d += w * ju * ju;
-  l.e += w * ju * r;
+  l.C.noalias() += w * j * jg.transpose();
+  l.D.noalias() += w * jg * jg.transpose();
+  l.e += w * r * jg;
 }
 
+/// `shift`: map metres by which the walls' surfaces lie nearer the laser than the field says;
+/// `model_shift`: every wall row depends on it (posts and corners as circles of radius
+/// surface_offset() + shift), as the joint fit with a surface shift needs.
 Linearization linearize(const WallField& walls, const ScanObservation& scan, const Pose2& pose,
-                        double u, double gate, const ScanMatchOptions& options) {
+                        double u, double gate, const ScanMatchOptions& options, double shift = 0.0,
+                        bool model_shift = false) {
   Linearization l;
   const Eigen::Matrix2d R = pose.rotation();
   const Eigen::Vector2d t = pose.translation();
@@ -108,13 +116,16 @@ Linearization linearize(const WallField& walls, const ScanObservation& scan, con
       continue;
     const Eigen::Vector2d dp_dtheta(-u * v.y(), u * v.x());
     const bool line = n.squaredNorm() > 0.5;
-    if (line || (walls.surface_offset() > 0.0 && distance > 0.0)) {
+    if (line || ((walls.surface_offset() > 0.0 || model_shift) && distance > 0.0)) {
       // Point to line: the wall's line, or for a post or corner whose surface lies
-      // surface_offset() off its point, that circle's tangent facing the endpoint.
+      // surface_offset() off its point, that circle's tangent facing the endpoint. The shift
+      // moves the surface towards the laser: the residual falls by it on the laser's side.
       const Eigen::Vector2d d = line ? n : Eigen::Vector2d(err / distance);
+      const double side = !line || (laser - wall->point.cast<double>()).dot(n) >= 0.0 ? 1.0 : -1.0;
       const double r =
-          line ? walls.surface_residual(*wall, p, laser) : distance - walls.surface_offset();
-      add_row(l, {d.x(), d.y(), d.dot(dp_dtheta)}, d.dot(v), r,
+          (line ? walls.surface_residual(*wall, p, laser) : distance - walls.surface_offset()) -
+          side * shift;
+      add_row(l, {d.x(), d.y(), d.dot(dp_dtheta)}, {d.dot(v), -side}, r,
               robust_weight(r, options.robust_scale));
       if (std::abs(r) < options.inlier_distance) {
         ++l.inliers;
@@ -126,8 +137,8 @@ Linearization linearize(const WallField& walls, const ScanObservation& scan, con
       }
     } else {
       const double w = robust_weight(distance, options.robust_scale);
-      add_row(l, {1.0, 0.0, dp_dtheta.x()}, v.x(), err.x(), w);
-      add_row(l, {0.0, 1.0, dp_dtheta.y()}, v.y(), err.y(), w);
+      add_row(l, {1.0, 0.0, dp_dtheta.x()}, {v.x(), 0.0}, err.x(), w);
+      add_row(l, {0.0, 1.0, dp_dtheta.y()}, {v.y(), 0.0}, err.y(), w);
       if (distance < options.inlier_distance) {
         ++l.inliers;
         l.inlier_square_sum += distance * distance;
@@ -260,7 +271,8 @@ ScaleProfile profile_scale(const WallField& walls, std::span<const ScanObservati
 
 ScaleFit fit_scale(const WallField& walls, std::span<const ScanObservation* const> scans,
                    std::span<const Pose2> poses, double initial_scale,
-                   const ScanMatchOptions& options, int max_iterations, int jackknife_blocks) {
+                   const ScanMatchOptions& options, int max_iterations, int jackknife_blocks,
+                   bool fit_shift) {
   validate(options);
   if (scans.size() != poses.size() || scans.empty())
     throw InputError("needs as many poses as scans, at least one", {}, 0, "scale_fit.scans");
@@ -277,7 +289,8 @@ ScaleFit fit_scale(const WallField& walls, std::span<const ScanObservation* cons
     if (m.failure == ScanMatchFailure::none || m.failure == ScanMatchFailure::degenerate)
       used.push_back(i);
   }
-  double u = 1.0 / initial_scale;
+  // The shared parameters g = (u, shift); without fit_shift only u moves (the shift stays 0).
+  Eigen::Vector2d g(1.0 / initial_scale, 0.0);
   fit.scans = used.size();
   if (used.empty()) {
     fit.scale = initial_scale;
@@ -287,72 +300,94 @@ ScaleFit fit_scale(const WallField& walls, std::span<const ScanObservation* cons
   std::vector<Eigen::LDLT<Eigen::Matrix3d>> solvers(used.size());
   const auto linearize_all = [&] {
     for (std::size_t k = 0; k < used.size(); ++k) {
-      lin[k] = linearize(walls, *scans[used[k]], fit.poses[used[k]], u, options.min_correspondence,
-                         options);
+      lin[k] = linearize(walls, *scans[used[k]], fit.poses[used[k]], g(0),
+                         options.min_correspondence, options, g(1), fit_shift);
       const double damping = 1e-6 * std::max(lin[k].A.trace(), 1e-9);
       solvers[k].compute(lin[k].A + damping * Eigen::Matrix3d::Identity());
     }
   };
+  // Schur complement on g: (sum D - C^T A^-1 C) dg = -(sum e - C^T A^-1 b), per scan.
+  const auto reduced = [&](std::size_t k, Eigen::Matrix2d& S, Eigen::Vector2d& G) {
+    S = lin[k].D - lin[k].C.transpose() * solvers[k].solve(lin[k].C);
+    G = lin[k].e - lin[k].C.transpose() * solvers[k].solve(lin[k].b);
+  };
+  // The step of g from the summed system: u alone, or u and the shift.
+  const auto solve_shared = [&](const Eigen::Matrix2d& S, const Eigen::Vector2d& G) {
+    Eigen::Vector2d dg = Eigen::Vector2d::Zero();
+    if (!fit_shift) {
+      dg(0) = S(0, 0) > 0.0 ? -G(0) / S(0, 0) : 0.0;
+    } else if (S.determinant() > 0.0 && S(0, 0) > 0.0) {
+      dg = -S.ldlt().solve(G);
+    }
+    return dg;
+  };
   for (int it = 0; it < max_iterations; ++it) {
     linearize_all();
-    // Schur complement on u: (sum d - c^T A^-1 c) du = -(sum e - c^T A^-1 b).
-    double s = 0.0, g = 0.0;
+    Eigen::Matrix2d S = Eigen::Matrix2d::Zero();
+    Eigen::Vector2d G = Eigen::Vector2d::Zero();
     for (std::size_t k = 0; k < used.size(); ++k) {
-      s += lin[k].d - lin[k].c.dot(solvers[k].solve(lin[k].c));
-      g += lin[k].e - lin[k].c.dot(solvers[k].solve(lin[k].b));
+      Eigen::Matrix2d s;
+      Eigen::Vector2d gk;
+      reduced(k, s, gk);
+      S += s;
+      G += gk;
     }
-    const double du = s > 0.0 ? -g / s : 0.0;
-    double largest = std::abs(du);
+    const Eigen::Vector2d dg = solve_shared(S, G);
+    double largest = dg.cwiseAbs().maxCoeff();
     for (std::size_t k = 0; k < used.size(); ++k) {
-      const Eigen::Vector3d step = -solvers[k].solve(lin[k].b + lin[k].c * du);
+      const Eigen::Vector3d step = -solvers[k].solve(lin[k].b + lin[k].C * dg);
       fit.poses[used[k]] = moved(fit.poses[used[k]], step);
       largest = std::max(largest, step.cwiseAbs().maxCoeff());
     }
-    u += du;
+    g += dg;
     fit.iterations = it + 1;
     if (largest < options.tolerance)
       break;
   }
-  // Jackknife at the solution: leaving block B out moves u by -(G - g_B) / (S - S_B).
+  // Jackknife at the solution: leaving block B out moves g by -(S - S_B)^-1 (G - G_B).
   linearize_all();
-  std::vector<double> s_of(used.size()), g_of(used.size());
-  double S = 0.0, G = 0.0;
+  std::vector<Eigen::Matrix2d> s_of(used.size());
+  std::vector<Eigen::Vector2d> g_of(used.size());
+  Eigen::Matrix2d S = Eigen::Matrix2d::Zero();
+  Eigen::Vector2d G = Eigen::Vector2d::Zero();
   fit.residuals = 0;
   for (std::size_t k = 0; k < used.size(); ++k) {
-    s_of[k] = lin[k].d - lin[k].c.dot(solvers[k].solve(lin[k].c));
-    g_of[k] = lin[k].e - lin[k].c.dot(solvers[k].solve(lin[k].b));
+    reduced(k, s_of[k], g_of[k]);
     S += s_of[k];
     G += g_of[k];
     fit.residuals += lin[k].inliers;
   }
   const int blocks = std::clamp<int>(jackknife_blocks, 2, static_cast<int>(used.size()));
-  std::vector<double> estimates;
-  if (used.size() >= 2 && S > 0.0) {
+  std::vector<Eigen::Vector2d> estimates;
+  if (used.size() >= 2 && S(0, 0) > 0.0) {
     for (int b = 0; b < blocks; ++b) {
       const std::size_t from = used.size() * b / blocks, to = used.size() * (b + 1) / blocks;
-      double sb = 0.0, gb = 0.0;
+      Eigen::Matrix2d sb = Eigen::Matrix2d::Zero();
+      Eigen::Vector2d gb = Eigen::Vector2d::Zero();
       for (std::size_t k = from; k < to; ++k) {
         sb += s_of[k];
         gb += g_of[k];
       }
-      if (S - sb > 0.0)
-        estimates.push_back(u - (G - gb) / (S - sb));
+      if (S(0, 0) - sb(0, 0) > 0.0)
+        estimates.push_back(g + solve_shared(S - sb, G - gb));
     }
   }
-  double std_u = 0.0;
+  Eigen::Vector2d std_g = Eigen::Vector2d::Zero();
   if (estimates.size() >= 2) {
-    double mean = 0.0;
-    for (const double e : estimates)
+    Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+    for (const Eigen::Vector2d& e : estimates)
       mean += e;
     mean /= static_cast<double>(estimates.size());
-    double sum = 0.0;
-    for (const double e : estimates)
-      sum += (e - mean) * (e - mean);
+    Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+    for (const Eigen::Vector2d& e : estimates)
+      sum += (e - mean).cwiseAbs2();
     const double k = static_cast<double>(estimates.size());
-    std_u = std::sqrt((k - 1.0) / k * sum);
+    std_g = ((k - 1.0) / k * sum).cwiseSqrt();
   }
-  fit.scale = 1.0 / u;
-  fit.scale_std = std_u / (u * u);
+  fit.scale = 1.0 / g(0);
+  fit.scale_std = std_g(0) / (g(0) * g(0));
+  fit.surface_shift = g(1);
+  fit.surface_shift_std = std_g(1);
   return fit;
 }
 

@@ -112,6 +112,11 @@ struct ScaleFit {
   std::size_t scans = 0;      ///< scans that constrained the fit
   std::size_t residuals = 0;  ///< inlier residuals of the final iteration
   int iterations = 0;         ///< Gauss-Newton iterations run
+  /// Map metres by which the walls' surfaces lie nearer the laser than the wall field says
+  /// (fitted only with `fit_shift`, else 0): walls built thicker than drawn, or drawn as
+  /// single lines where the laser meets faces.
+  double surface_shift = 0.0;
+  double surface_shift_std = 0.0;  ///< its standard deviation (the same jackknife)
 };
 
 /// Fits one scale shared by all `scans` together with each scan's pose (starting from `poses`
@@ -121,9 +126,14 @@ struct ScaleFit {
 /// shared by neighbouring scans (one misdrawn wall) are not counted as independent.
 /// `scans` and `poses` have the same length (>= 1). To fit on the beams consistent with a
 /// plan (not the endpoints on furniture it lacks), reduce each scan with beam_consistent first.
+/// With `fit_shift`, one more parameter is fitted with the scale: a shift of every wall's
+/// surface towards the laser that sees it (ScaleFit::surface_shift). A scan sees walls at
+/// every range, so a shift (the same at every range) and a scale (proportional to the range)
+/// are told apart; fitted with the scale alone, faces that lie in front of the drawn walls
+/// shrink every room and bias the scale low.
 ScaleFit fit_scale(const WallField& walls, std::span<const ScanObservation* const> scans,
                    std::span<const Pose2> poses, double initial_scale,
                    const ScanMatchOptions& options = {}, int max_iterations = 30,
-                   int jackknife_blocks = 20);
+                   int jackknife_blocks = 20, bool fit_shift = false);
 
 }  // namespace floorgrid

@@ -112,7 +112,7 @@ DualLocalization empty_result(std::size_t scans) {
 void make_dual_pairs(const DualMaps& maps, const RobotLog& log, const DualLocalizerOptions& options,
                      DualLocalization& result) {
   const auto clock = std::chrono::steady_clock::now();
-  make_pairs(result, log, maps.plan_walls(), maps.grid_walls(), options.pairs,
+  make_pairs(result, log, maps.plan_walls(), maps.grid_walls(), options.pairs, options.pose_pull,
              options.refine_poses);
   drop_outlier_scans(result, options.outlier_scans);
   result.pairs_seconds = seconds_since(clock);
@@ -144,7 +144,8 @@ DualLocalization localize_dual(const DualLocalizerInputs& inputs,
     search_plan_scale(maps, inputs.log, options, location, result);
 
   // 4 and 5. Track the plan, checked against the gridmap filter; refit the scale.
-  track_plan_and_refit_scale(maps, inputs.log, options, location, result, progress);
+  track_plan_and_refit_scale(maps, inputs.log, options, location, result, progress,
+                             inputs.plan_geometry != nullptr);
 
   // The pairs.
   make_dual_pairs(maps, inputs.log, options, result);

@@ -20,6 +20,7 @@
 #include "floorgrid/pipeline/map_registration.hpp"
 #include "floorgrid/pipeline/outlier_scans.hpp"
 #include "floorgrid/pipeline/plan_registration.hpp"
+#include "floorgrid/pipeline/pose_pull.hpp"
 #include "floorgrid/robot/robot_log.hpp"
 
 namespace floorgrid {
@@ -255,11 +256,29 @@ struct DualCheckOptions {
   double reinitialize_heading_sigma = 0.2;  ///< radians
 };
 
+/// Whether the scale refit fits a surface shift (ScaleRefitOptions::surface_shift).
+enum class SurfaceShift {
+  automatic,  ///< for a vector plan
+  always,     ///< for every plan
+  never,      ///< the scale alone, as the refit did before
+};
+
 /// Step 5: with an unknown plan scale, the scale refitted with the refined plan poses.
 struct ScaleRefitOptions {
   /// Refit the scale, with the refined plan poses of every scan used for pairs, by a joint
   /// Gauss-Newton (fit_scale), and make the pairs with that scale.
   bool enabled = true;
+  /// Fit with the scale a shift of every plan wall's surface towards the laser that sees it
+  /// (fit_scale's fit_shift; DualLocalization::plan_surface_shift). A vector plan's walls are
+  /// lines, often single ones, where the laser meets faces half a wall's thickness in front:
+  /// fitted with the scale alone they shrink every room, bias the scale low and pull the poses
+  /// forward. A raster plan's scans already meet its ink where its faces are (plan_wall_line),
+  /// so with automatic only vector plans get the shift.
+  SurfaceShift surface_shift = SurfaceShift::automatic;
+  /// Refit also a scale the maps' registration gave (PlanLocation::keep_scale) where the
+  /// refit fits the surface shift (fitted with the scale alone, the walls' thickness biased
+  /// the refit, which is why the registration's scale was kept).
+  bool refit_registered_scale = true;
   std::size_t min_scans = 10;  ///< matched scans the refit needs, else the search's scale stays
   int max_iterations = 30;     ///< of the joint Gauss-Newton
   int jackknife_blocks = 20;   ///< blocks of scans for the scale's standard deviation
@@ -328,6 +347,8 @@ struct DualLocalizerOptions {
   DualCheckOptions dual_check;                      ///< step 4
   ScaleRefitOptions scale_refit;                    ///< step 5
   PairExtractionOptions pairs;                      ///< how endpoints become pairs
+  /// The plan poses' pull along the robot's heading, measured from revisits and taken out.
+  PosePullOptions pose_pull;
   /// Scans whose pairs disagree with the other scans' at the same walls are dropped.
   OutlierScanOptions outlier_scans;
 
@@ -397,8 +418,13 @@ struct DualLocalization {
   /// The longest run of scans between two converged periods (how long re-converging took at
   /// worst), 0 with fewer than two periods.
   std::size_t longest_gap = 0;
-  double plan_scale = 1.0;             ///< world metres per plan metre used for the pairs
-  double plan_scale_std = 0.0;         ///< its uncertainty (0 when given)
+  double plan_scale = 1.0;      ///< world metres per plan metre used for the pairs
+  double plan_scale_std = 0.0;  ///< its uncertainty (0 when given)
+  /// World metres by which the plan walls' surfaces were found nearer the laser than the
+  /// scan matchers met them, fitted with the scale (ScaleRefitOptions::fit_surface_shift; 0
+  /// when not fitted), and its standard deviation.
+  double plan_surface_shift = 0.0;
+  double plan_surface_shift_std = 0.0;
   bool plan_scale_estimated = false;   ///< whether it was searched
   double plan_scale_search = 0.0;      ///< the particle filter's search result
   double plan_scale_search_std = 0.0;  ///< and its spread
@@ -428,8 +454,11 @@ struct DualLocalization {
   double global_localization_seconds = 0.0;  ///< wall clock
   double scale_search_seconds = 0.0;         ///< wall clock (search and refit)
   double localize_seconds = 0.0;             ///< wall clock of the tracking passes
-  double grid_seconds = 0.0;       ///< of which the gridmap filter's pass (global included)
-  double pairs_seconds = 0.0;      ///< of pair extraction
+  double grid_seconds = 0.0;   ///< of which the gridmap filter's pass (global included)
+  double pairs_seconds = 0.0;  ///< of pair extraction
+  /// The plan poses' pull along the robot's heading (measure_pose_pull; nullopt when not
+  /// measured or no place was revisited facing another way).
+  std::optional<PosePull> pose_pull;
   std::vector<std::string> notes;  ///< what happened, in words
 };
 

@@ -6,7 +6,10 @@
 #include <map>
 #include <optional>
 
+#include <fmt/format.h>
+
 #include "floorgrid/pipeline/plan_tracking.hpp"
+#include "floorgrid/pipeline/pose_pull.hpp"
 
 namespace floorgrid {
 
@@ -18,7 +21,7 @@ bool usable_for_pairs(const ScanRecord& r, bool refine) {
 
 double refit_plan_scale(DualLocalization& result, const RobotLog& log, const WallField& plan_walls,
                         const FilterRunnerOptions& plan_runner, const ScaleRefitOptions& options,
-                        double scale, const GridRayCaster* plan_caster) {
+                        double scale, bool fit_shift, const GridRayCaster* plan_caster) {
   // Each scan reduced to its beams consistent with the plan at its pose as it is prepared: a
   // long run's full observations and their reduced copies are never held at once.
   std::vector<ScanObservation> points;
@@ -45,8 +48,16 @@ double refit_plan_scale(DualLocalization& result, const RobotLog& log, const Wal
   for (const ScanObservation& p : points)
     views.push_back(&p);
   const ScaleFit fit = fit_scale(plan_walls, views, poses, scale, plan_runner.match,
-                                 options.max_iterations, options.jackknife_blocks);
+                                 options.max_iterations, options.jackknife_blocks, fit_shift);
   result.plan_scale_std = fit.scale_std;
+  result.plan_surface_shift = fit.surface_shift * fit.scale;
+  result.plan_surface_shift_std = fit.surface_shift_std * fit.scale;
+  if (fit_shift) {
+    result.notes.push_back(fmt::format(
+        "the plan's walls were met {:.3f} m (+-{:.3f} m) nearer the laser than drawn, fitted "
+        "with the scale",
+        result.plan_surface_shift, result.plan_surface_shift_std));
+  }
   for (std::size_t k = 0; k < which.size(); ++k)
     result.scans[which[k]].plan.match.pose = fit.poses[k];
   result.notes.push_back("plan scale refitted on " + std::to_string(fit.scans) +
@@ -56,11 +67,15 @@ double refit_plan_scale(DualLocalization& result, const RobotLog& log, const Wal
 
 void track_plan_and_refit_scale(const DualMaps& maps, const RobotLog& log,
                                 const DualLocalizerOptions& options, PlanLocation& location,
-                                DualLocalization& result, const DualProgressCallback& progress) {
+                                DualLocalization& result, const DualProgressCallback& progress,
+                                bool vector_plan) {
   const ScaleRefitOptions& refit_options = options.scale_refit;
-  const bool refit_scale = result.plan_scale_estimated && options.refine_poses &&
-                           refit_options.enabled && !location.keep_scale;
-  if (location.keep_scale)
+  const bool fit_shift = refit_options.surface_shift == SurfaceShift::always ||
+                         (refit_options.surface_shift == SurfaceShift::automatic && vector_plan);
+  const bool refit_scale =
+      result.plan_scale_estimated && options.refine_poses && refit_options.enabled &&
+      (!location.keep_scale || (refit_options.refit_registered_scale && fit_shift));
+  if (location.keep_scale && !refit_scale)
     result.notes.push_back("the plan scale is kept as the maps' registration gave it");
   for (int pass = 1;; ++pass) {
     auto clock = std::chrono::steady_clock::now();
@@ -69,8 +84,9 @@ void track_plan_and_refit_scale(const DualMaps& maps, const RobotLog& log,
     if (!refit_scale)
       break;
     clock = std::chrono::steady_clock::now();
-    const double refit = refit_plan_scale(result, log, maps.plan_walls(), options.plan.runner,
-                                          refit_options, location.scale, maps.plan_rays());
+    const double refit =
+        refit_plan_scale(result, log, maps.plan_walls(), options.plan.runner, refit_options,
+                         location.scale, fit_shift, maps.plan_rays());
     result.scale_search_seconds += seconds_since(clock);
     const double change = std::abs(refit / location.scale - 1.0);
     if (change > refit_options.max_change) {
@@ -88,36 +104,78 @@ void track_plan_and_refit_scale(const DualMaps& maps, const RobotLog& log,
   result.plan_scale = location.scale;
 }
 
+namespace {
+
+/// The poses a usable scan's pairs are made from: the scan-matched ones when `refine`, else the
+/// filters' means; nullopt (with the scan's beams counted in `rejections`) for a scan that
+/// gives no pairs.
+std::optional<std::pair<Pose2, Pose2>> pair_poses(const ScanRecord& record, const LaserScan& scan,
+                                                  bool refine, PairRejections* rejections) {
+  PairRejections ignored;
+  PairRejections& counts = rejections ? *rejections : ignored;
+  if (!(record.plan.converged && record.grid.converged)) {
+    reject_scan(scan, counts);
+    return std::nullopt;
+  }
+  if (!record.consistent) {
+    counts.inconsistent += scan.ranges.size();
+    return std::nullopt;
+  }
+  if (!refine)
+    return std::pair{record.plan.pose, record.grid.pose};
+  const ScanMatchFailure failure =
+      record.plan.match.ok() ? record.grid.match.failure : record.plan.match.failure;
+  if (failure == ScanMatchFailure::degenerate) {
+    counts.degenerate += scan.ranges.size();
+    return std::nullopt;
+  }
+  if (failure != ScanMatchFailure::none) {
+    counts.unmatched += scan.ranges.size();
+    return std::nullopt;
+  }
+  return std::pair{record.plan.match.pose, record.grid.match.pose};
+}
+
+/// The plan poses' pull along the robot's heading over the scans that give pairs
+/// (measure_pose_pull), with a note saying what was done with it.
+std::optional<PosePull> pull_of_pair_poses(DualLocalization& result, const RobotLog& log,
+                                           const PosePullOptions& options, bool refine) {
+  if (!options.enabled)
+    return std::nullopt;
+  std::vector<PullSample> samples;
+  for (const ScanRecord& record : result.scans) {
+    const LaserScan& scan = log.scans[record.scan];
+    if (const auto poses = pair_poses(record, scan, refine, nullptr))
+      samples.push_back({scan.timestamp, poses->first, poses->second});
+  }
+  std::optional<PosePull> pull = measure_pose_pull(samples, result.plan_scale, options);
+  if (!pull)
+    return pull;
+  result.notes.push_back(fmt::format(
+      "the plan's poses stood {:.3f} m ahead of the gridmap's along the robot's heading (+-{:.3f} "
+      "m, from {} scans revisited facing another way): {}",
+      pull->along_m, pull->std_m, pull->scans,
+      pull->applied ? "taken out of the pairs" : "not taken out (too uncertain or too large)"));
+  return pull;
+}
+
+}  // namespace
+
 void make_pairs(DualLocalization& result, const RobotLog& log, const WallField& plan_walls,
-                const WallField& grid_walls, const PairExtractionOptions& options, bool refine) {
+                const WallField& grid_walls, const PairExtractionOptions& options,
+                const PosePullOptions& pull_options, bool refine) {
+  result.pose_pull = pull_of_pair_poses(result, log, pull_options, refine);
+  const double pull_m =
+      result.pose_pull && result.pose_pull->applied ? result.pose_pull->along_m : 0.0;
   PairCollector pairs;
   for (ScanRecord& record : result.scans) {
     const LaserScan& scan = log.scans[record.scan];
-    if (!(record.plan.converged && record.grid.converged)) {
-      reject_scan(scan, result.rejections);
+    const auto poses = pair_poses(record, scan, refine, &result.rejections);
+    if (!poses)
       continue;
-    }
-    if (!record.consistent) {
-      result.rejections.inconsistent += scan.ranges.size();
-      continue;
-    }
-    Pose2 plan_pose = record.plan.pose, grid_pose = record.grid.pose;
-    if (refine) {
-      const ScanMatchFailure failure =
-          record.plan.match.ok() ? record.grid.match.failure : record.plan.match.failure;
-      if (failure == ScanMatchFailure::degenerate) {
-        result.rejections.degenerate += scan.ranges.size();
-        continue;
-      }
-      if (failure != ScanMatchFailure::none) {
-        result.rejections.unmatched += scan.ranges.size();
-        continue;
-      }
-      plan_pose = record.plan.match.pose;
-      grid_pose = record.grid.match.pose;
-    }
+    const Pose2 plan_pose = without_pull(poses->first, pull_m, result.plan_scale);
     const std::size_t before = pairs.size();
-    extract_scan_pairs(scan, plan_pose, result.plan_scale, grid_pose, plan_walls, grid_walls,
+    extract_scan_pairs(scan, plan_pose, result.plan_scale, poses->second, plan_walls, grid_walls,
                        options, pairs, result.rejections);
     record.pairs = pairs.size() - before;
   }

@@ -10,24 +10,30 @@ namespace floorgrid {
 bool usable_for_pairs(const ScanRecord& record, bool refine);
 
 /// Refits the plan's scale jointly with the refined plan poses of every usable scan
-/// (fit_scale) and stores the refitted poses in the records; returns the scale (or `scale`
-/// when fewer than options.min_scans scans are usable) and sets result.plan_scale_std.
+/// (fit_scale; with `fit_shift`, and a shift of the walls' surfaces) and stores the refitted
+/// poses in the records; returns the scale (or `scale` when fewer than options.min_scans scans
+/// are usable) and sets result.plan_scale_std and result.plan_surface_shift.
 double refit_plan_scale(DualLocalization& result, const RobotLog& log, const WallField& plan_walls,
                         const FilterRunnerOptions& plan_runner, const ScaleRefitOptions& options,
-                        double scale, const GridRayCaster* plan_caster = nullptr);
+                        double scale, bool fit_shift, const GridRayCaster* plan_caster = nullptr);
 
 /// Steps 4 and 5 of localize_dual: the plan filter tracks (track_plan) and, with an unknown
 /// scale, the scale is refitted with the refined plan poses; when the refit moved it by more
 /// than ScaleRefitOptions::retrack_change, the plan filter tracks again at the new scale.
-/// Sets result.plan_scale.
+/// Sets result.plan_scale. `vector_plan`: the plan is a vector drawing (ScaleRefitOptions::
+/// surface_shift).
 void track_plan_and_refit_scale(const DualMaps& maps, const RobotLog& log,
                                 const DualLocalizerOptions& options, PlanLocation& location,
-                                DualLocalization& result, const DualProgressCallback& progress);
+                                DualLocalization& result, const DualProgressCallback& progress,
+                                bool vector_plan);
 
 /// The pairs of every scan (result.pairs, result.rejections, ScanRecord::pairs) at the plan
 /// scale result.plan_scale: from the refined poses when `refine`, else the filters' means.
+/// First the plan poses' pull along the robot's heading is measured (result.pose_pull,
+/// measure_pose_pull); when it is measured well, the plan poses are moved back by it.
 void make_pairs(DualLocalization& result, const RobotLog& log, const WallField& plan_walls,
-                const WallField& grid_walls, const PairExtractionOptions& options, bool refine);
+                const WallField& grid_walls, const PairExtractionOptions& options,
+                const PosePullOptions& pull_options, bool refine);
 
 /// Drops the pairs of scans that disagree with the other scans' (reject_outlier_scans):
 /// updates result.pairs, the records' pair counts and the `outlier_scan` rejections.

@@ -119,6 +119,56 @@ TEST(ScanMatcher, MeetsARasterPlansWallsAtTheInksEdge) {
   }
 }
 
+// A drawn room (10 x 8 m with a pillar, single lines) built with walls whose faces lie
+// `shift` plan metres in front of the lines, at `scale` world metres per plan metre.
+VectorFloorplan room_with_faces(double shift, double scale) {
+  VectorFloorplan room;
+  const auto box = [&](double x0, double y0, double x1, double y1) {
+    room.add_segment({x0 * scale, y0 * scale}, {x1 * scale, y0 * scale}, "W");
+    room.add_segment({x1 * scale, y0 * scale}, {x1 * scale, y1 * scale}, "W");
+    room.add_segment({x1 * scale, y1 * scale}, {x0 * scale, y1 * scale}, "W");
+    room.add_segment({x0 * scale, y1 * scale}, {x0 * scale, y0 * scale}, "W");
+  };
+  box(shift, shift, 10.0 - shift, 8.0 - shift);             // the room's inside faces
+  box(6.0 - shift, 5.0 - shift, 7.5 + shift, 5.8 + shift);  // the pillar's outside faces
+  return room;
+}
+
+TEST(ScaleFit, TellsASurfaceShiftFromTheScale) {
+  constexpr double kScale = 1.3, kShift = 0.05;  // world m per plan m; plan m
+  const Walls drawn(room_with_faces(0.0, 1.0));
+  const VectorFloorplan built = room_with_faces(kShift, kScale);
+  std::vector<Pose2> truth_in_plan, starts;
+  for (int i = 0; i < 24; ++i) {
+    const double x = 1.5 + 7.0 * ((i * 7) % 24) / 24.0, y = 1.2 + 2.5 * ((i * 5) % 12) / 12.0;
+    truth_in_plan.push_back({x, y, 0.7 * i});
+    starts.push_back(truth_in_plan.back().compose({0.04, -0.03, 0.01}));
+  }
+  std::vector<Pose2> truth_in_world;
+  for (const Pose2& p : truth_in_plan)
+    truth_in_world.push_back({p.x * kScale, p.y * kScale, p.theta});
+  const RobotLog log = test::log_along(built, truth_in_world);
+  std::vector<ScanObservation> scans;
+  for (const LaserScan& scan : log.scans)
+    scans.push_back(make_observation(scan, {.max_beams = 180}));
+  std::vector<const ScanObservation*> views;
+  for (const ScanObservation& scan : scans)
+    views.push_back(&scan);
+  // The scale alone: every room looks smaller than drawn by two faces' shifts, so the scale
+  // comes out low by about that share (1-1.25% here).
+  const ScaleFit alone = fit_scale(drawn.field, views, starts, kScale * 1.005);
+  EXPECT_LT(alone.scale / kScale - 1.0, -0.005);
+  EXPECT_EQ(alone.surface_shift, 0.0);
+  // Fitted with the shift: both found, and the poses with them.
+  const ScaleFit both = fit_scale(drawn.field, views, starts, kScale * 1.005, {}, 30, 6, true);
+  EXPECT_NEAR(both.scale / kScale, 1.0, 0.002);
+  EXPECT_NEAR(both.surface_shift, kShift, 0.01);
+  EXPECT_GT(both.surface_shift_std, 0.0);
+  EXPECT_LT(both.surface_shift_std, 0.01);
+  for (std::size_t i = 0; i < truth_in_plan.size(); ++i)
+    EXPECT_LT((both.poses[i].translation() - truth_in_plan[i].translation()).norm(), 0.02) << i;
+}
+
 TEST(ScanMatcher, RefusesBadOptions) {
   ScanMatchOptions options;
   options.min_correspondence = 1.0;  // above max_correspondence
