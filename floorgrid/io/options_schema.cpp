@@ -1096,6 +1096,12 @@ void visit(OptionVisitor& v, ScaleRefitOptions& o) {
            .doc = "Refit also a scale the maps' registration gave, where the surface shift is "
                   "fitted",
            .choices = {}});
+  v.field("min_shift", o.min_shift,
+          {.unit = "m",
+           .doc = "The fitted shift is used only where it is at least this large (else the "
+                  "scale alone, and a registered scale kept)",
+           .choices = {},
+           .range = kNonNegative});
   v.field("min_scans", o.min_scans,
           {.unit = "",
            .doc = "Matched scans the refit needs, else the search's scale stays",

@@ -279,6 +279,10 @@ struct ScaleRefitOptions {
   /// refit fits the surface shift (fitted with the scale alone, the walls' thickness biased
   /// the refit, which is why the registration's scale was kept).
   bool refit_registered_scale = true;
+  /// World metres: the fitted shift is used only where it is at least this large; a plan whose
+  /// walls' faces lie on its lines has its scale fitted alone, as before, and keeps a scale the
+  /// registration gave.
+  double min_shift = 0.01;
   std::size_t min_scans = 10;  ///< matched scans the refit needs, else the search's scale stays
   int max_iterations = 30;     ///< of the joint Gauss-Newton
   int jackknife_blocks = 20;   ///< blocks of scans for the scale's standard deviation

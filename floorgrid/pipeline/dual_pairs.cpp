@@ -21,7 +21,8 @@ bool usable_for_pairs(const ScanRecord& r, bool refine) {
 
 double refit_plan_scale(DualLocalization& result, const RobotLog& log, const WallField& plan_walls,
                         const FilterRunnerOptions& plan_runner, const ScaleRefitOptions& options,
-                        double scale, bool fit_shift, const GridRayCaster* plan_caster) {
+                        double scale, bool fit_shift, double min_shift, bool registered,
+                        const GridRayCaster* plan_caster) {
   // Each scan reduced to its beams consistent with the plan at its pose as it is prepared: a
   // long run's full observations and their reduced copies are never held at once.
   std::vector<ScanObservation> points;
@@ -47,17 +48,28 @@ double refit_plan_scale(DualLocalization& result, const RobotLog& log, const Wal
   views.reserve(points.size());
   for (const ScanObservation& p : points)
     views.push_back(&p);
-  const ScaleFit fit = fit_scale(plan_walls, views, poses, scale, plan_runner.match,
-                                 options.max_iterations, options.jackknife_blocks, fit_shift);
-  result.plan_scale_std = fit.scale_std;
-  result.plan_surface_shift = fit.surface_shift * fit.scale;
-  result.plan_surface_shift_std = fit.surface_shift_std * fit.scale;
+  ScaleFit fit = fit_scale(plan_walls, views, poses, scale, plan_runner.match,
+                           options.max_iterations, options.jackknife_blocks, fit_shift);
   if (fit_shift) {
+    result.plan_surface_shift = fit.surface_shift * fit.scale;
+    result.plan_surface_shift_std = fit.surface_shift_std * fit.scale;
+    const bool used = std::abs(result.plan_surface_shift) >= min_shift;
     result.notes.push_back(fmt::format(
-        "the plan's walls were met {:.3f} m (+-{:.3f} m) nearer the laser than drawn, fitted "
-        "with the scale",
-        result.plan_surface_shift, result.plan_surface_shift_std));
+        "the plan's walls were met {:.3f} m (+-{:.3f} m) nearer the laser than drawn{}",
+        result.plan_surface_shift, result.plan_surface_shift_std,
+        used ? ", fitted with the scale" : ": on their lines, so the scale is fitted alone"));
+    if (!used) {
+      // The walls' faces lie on the drawn lines: the fit as it was without the shift, and a
+      // registered scale kept with the scans' poses (the registration is not biased here).
+      if (registered) {
+        result.notes.push_back("the plan scale is kept as the maps' registration gave it");
+        return scale;
+      }
+      fit = fit_scale(plan_walls, views, poses, scale, plan_runner.match, options.max_iterations,
+                      options.jackknife_blocks);
+    }
   }
+  result.plan_scale_std = fit.scale_std;
   for (std::size_t k = 0; k < which.size(); ++k)
     result.scans[which[k]].plan.match.pose = fit.poses[k];
   result.notes.push_back("plan scale refitted on " + std::to_string(fit.scans) +
@@ -70,8 +82,10 @@ void track_plan_and_refit_scale(const DualMaps& maps, const RobotLog& log,
                                 DualLocalization& result, const DualProgressCallback& progress,
                                 bool vector_plan) {
   const ScaleRefitOptions& refit_options = options.scale_refit;
-  const bool fit_shift = refit_options.surface_shift == SurfaceShift::always ||
-                         (refit_options.surface_shift == SurfaceShift::automatic && vector_plan);
+  // Whether the refit fits the shift: decided by the first pass's (min_shift), then kept, so
+  // that a pass tracked at a scale the shift moved is refitted the same way.
+  bool fit_shift = refit_options.surface_shift == SurfaceShift::always ||
+                   (refit_options.surface_shift == SurfaceShift::automatic && vector_plan);
   const bool refit_scale =
       result.plan_scale_estimated && options.refine_poses && refit_options.enabled &&
       (!location.keep_scale || (refit_options.refit_registered_scale && fit_shift));
@@ -84,9 +98,11 @@ void track_plan_and_refit_scale(const DualMaps& maps, const RobotLog& log,
     if (!refit_scale)
       break;
     clock = std::chrono::steady_clock::now();
-    const double refit =
-        refit_plan_scale(result, log, maps.plan_walls(), options.plan.runner, refit_options,
-                         location.scale, fit_shift, maps.plan_rays());
+    const double min_shift = pass == 1 ? refit_options.min_shift : 0.0;
+    const double refit = refit_plan_scale(result, log, maps.plan_walls(), options.plan.runner,
+                                          refit_options, location.scale, fit_shift, min_shift,
+                                          location.keep_scale && pass == 1, maps.plan_rays());
+    fit_shift = fit_shift && std::abs(result.plan_surface_shift) >= min_shift;
     result.scale_search_seconds += seconds_since(clock);
     const double change = std::abs(refit / location.scale - 1.0);
     if (change > refit_options.max_change) {
