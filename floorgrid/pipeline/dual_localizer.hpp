@@ -425,8 +425,9 @@ struct DualLocalization {
   double plan_scale = 1.0;      ///< world metres per plan metre used for the pairs
   double plan_scale_std = 0.0;  ///< its uncertainty (0 when given)
   /// World metres by which the plan walls' surfaces were found nearer the laser than the
-  /// scan matchers met them, fitted with the scale (ScaleRefitOptions::fit_surface_shift; 0
-  /// when not fitted), and its standard deviation.
+  /// scan matchers met them, fitted with the scale (ScaleRefitOptions::surface_shift; 0 when
+  /// not fitted; measured even where it was below min_shift and not used), and its standard
+  /// deviation.
   double plan_surface_shift = 0.0;
   double plan_surface_shift_std = 0.0;
   bool plan_scale_estimated = false;   ///< whether it was searched
