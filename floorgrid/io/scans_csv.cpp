@@ -25,8 +25,8 @@ void append_filter(std::string& out, const FilterRecord& r) {
   fmt::format_to(std::back_inserter(out), ",{}", r.estimate.scale);
 }
 
-/// The scan matched pose (the one pairs are made from) when the match was accepted, else empty
-/// fields.
+/// The scan matched pose (the one pairs are made from, before the pose pull is taken out of
+/// the plan's) when the match was accepted, else empty fields.
 void append_matched(std::string& out, const FilterRecord& r) {
   if (r.matched && r.match.ok()) {
     fmt::format_to(std::back_inserter(out), ",{},{},{}", r.match.pose.x, r.match.pose.y,

@@ -121,7 +121,9 @@ Linearization linearize(const WallField& walls, const ScanObservation& scan, con
       // surface_offset() off its point, that circle's tangent facing the endpoint. The shift
       // moves the surface towards the laser: the residual falls by it on the laser's side.
       const Eigen::Vector2d d = line ? n : Eigen::Vector2d(err / distance);
-      const double side = !line || (laser - wall->point.cast<double>()).dot(n) >= 0.0 ? 1.0 : -1.0;
+      // The side only matters to the shift's row; the matcher's own rows skip the test.
+      const double side =
+          !model_shift || !line || (laser - wall->point.cast<double>()).dot(n) >= 0.0 ? 1.0 : -1.0;
       const double r =
           (line ? walls.surface_residual(*wall, p, laser) : distance - walls.surface_offset()) -
           side * shift;

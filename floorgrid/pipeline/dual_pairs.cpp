@@ -13,16 +13,23 @@
 
 namespace floorgrid {
 
+namespace {
+
+constexpr const char* kKeptRegisteredScale =
+    "the plan scale is kept as the maps' registration gave it";
+
+}  // namespace
+
 bool usable_for_pairs(const ScanRecord& r, bool refine) {
   if (!(r.plan.converged && r.grid.converged) || !r.consistent)
     return false;
   return !refine || (r.plan.match.ok() && r.grid.match.ok());
 }
 
-double refit_plan_scale(DualLocalization& result, const RobotLog& log, const WallField& plan_walls,
-                        const FilterRunnerOptions& plan_runner, const ScaleRefitOptions& options,
-                        double scale, bool fit_shift, double min_shift, bool registered,
-                        const GridRayCaster* plan_caster) {
+ScaleRefit refit_plan_scale(DualLocalization& result, const RobotLog& log,
+                            const WallField& plan_walls, const FilterRunnerOptions& plan_runner,
+                            const ScaleRefitOptions& options, double scale, bool fit_shift,
+                            double min_shift, bool registered, const GridRayCaster* plan_caster) {
   // Each scan reduced to its beams consistent with the plan at its pose as it is prepared: a
   // long run's full observations and their reduced copies are never held at once.
   std::vector<ScanObservation> points;
@@ -42,7 +49,7 @@ double refit_plan_scale(DualLocalization& result, const RobotLog& log, const Wal
   }
   if (points.size() < options.min_scans) {
     result.notes.push_back("too few matched scans to refit the plan scale: kept the search's");
-    return scale;
+    return {scale, false};
   }
   std::vector<const ScanObservation*> views;
   views.reserve(points.size());
@@ -50,20 +57,21 @@ double refit_plan_scale(DualLocalization& result, const RobotLog& log, const Wal
     views.push_back(&p);
   ScaleFit fit = fit_scale(plan_walls, views, poses, scale, plan_runner.match,
                            options.max_iterations, options.jackknife_blocks, fit_shift);
+  bool shift_used = false;
   if (fit_shift) {
     result.plan_surface_shift = fit.surface_shift * fit.scale;
     result.plan_surface_shift_std = fit.surface_shift_std * fit.scale;
-    const bool used = std::abs(result.plan_surface_shift) >= min_shift;
+    shift_used = std::abs(result.plan_surface_shift) >= min_shift;
     result.notes.push_back(fmt::format(
         "the plan's walls were met {:.3f} m (+-{:.3f} m) nearer the laser than drawn{}",
         result.plan_surface_shift, result.plan_surface_shift_std,
-        used ? ", fitted with the scale" : ": on their lines, so the scale is fitted alone"));
-    if (!used) {
+        shift_used ? ", fitted with the scale" : ": on their lines, so the scale is fitted alone"));
+    if (!shift_used) {
       // The walls' faces lie on the drawn lines: the fit as it was without the shift, and a
       // registered scale kept with the scans' poses (the registration is not biased here).
       if (registered) {
-        result.notes.push_back("the plan scale is kept as the maps' registration gave it");
-        return scale;
+        result.notes.push_back(kKeptRegisteredScale);
+        return {scale, false};
       }
       fit = fit_scale(plan_walls, views, poses, scale, plan_runner.match, options.max_iterations,
                       options.jackknife_blocks);
@@ -74,7 +82,7 @@ double refit_plan_scale(DualLocalization& result, const RobotLog& log, const Wal
     result.scans[which[k]].plan.match.pose = fit.poses[k];
   result.notes.push_back("plan scale refitted on " + std::to_string(fit.scans) +
                          " scans by joint scan matching");
-  return fit.scale;
+  return {fit.scale, shift_used};
 }
 
 void track_plan_and_refit_scale(const DualMaps& maps, const RobotLog& log,
@@ -90,7 +98,7 @@ void track_plan_and_refit_scale(const DualMaps& maps, const RobotLog& log,
       result.plan_scale_estimated && options.refine_poses && refit_options.enabled &&
       (!location.keep_scale || (refit_options.refit_registered_scale && fit_shift));
   if (location.keep_scale && !refit_scale)
-    result.notes.push_back("the plan scale is kept as the maps' registration gave it");
+    result.notes.push_back(kKeptRegisteredScale);
   for (int pass = 1;; ++pass) {
     auto clock = std::chrono::steady_clock::now();
     track_plan(maps, log, options, location, result, progress);
@@ -98,11 +106,12 @@ void track_plan_and_refit_scale(const DualMaps& maps, const RobotLog& log,
     if (!refit_scale)
       break;
     clock = std::chrono::steady_clock::now();
-    const double min_shift = pass == 1 ? refit_options.min_shift : 0.0;
-    const double refit = refit_plan_scale(result, log, maps.plan_walls(), options.plan.runner,
-                                          refit_options, location.scale, fit_shift, min_shift,
-                                          location.keep_scale && pass == 1, maps.plan_rays());
-    fit_shift = fit_shift && std::abs(result.plan_surface_shift) >= min_shift;
+    const ScaleRefit refitted =
+        refit_plan_scale(result, log, maps.plan_walls(), options.plan.runner, refit_options,
+                         location.scale, fit_shift, pass == 1 ? refit_options.min_shift : 0.0,
+                         location.keep_scale && pass == 1, maps.plan_rays());
+    fit_shift = refitted.shift_used;
+    const double refit = refitted.scale;
     result.scale_search_seconds += seconds_since(clock);
     const double change = std::abs(refit / location.scale - 1.0);
     if (change > refit_options.max_change) {
@@ -126,15 +135,13 @@ namespace {
 /// filters' means; nullopt (with the scan's beams counted in `rejections`) for a scan that
 /// gives no pairs.
 std::optional<std::pair<Pose2, Pose2>> pair_poses(const ScanRecord& record, const LaserScan& scan,
-                                                  bool refine, PairRejections* rejections) {
-  PairRejections ignored;
-  PairRejections& counts = rejections ? *rejections : ignored;
+                                                  bool refine, PairRejections& rejections) {
   if (!(record.plan.converged && record.grid.converged)) {
-    reject_scan(scan, counts);
+    reject_scan(scan, rejections);
     return std::nullopt;
   }
   if (!record.consistent) {
-    counts.inconsistent += scan.ranges.size();
+    rejections.inconsistent += scan.ranges.size();
     return std::nullopt;
   }
   if (!refine)
@@ -142,28 +149,23 @@ std::optional<std::pair<Pose2, Pose2>> pair_poses(const ScanRecord& record, cons
   const ScanMatchFailure failure =
       record.plan.match.ok() ? record.grid.match.failure : record.plan.match.failure;
   if (failure == ScanMatchFailure::degenerate) {
-    counts.degenerate += scan.ranges.size();
+    rejections.degenerate += scan.ranges.size();
     return std::nullopt;
   }
   if (failure != ScanMatchFailure::none) {
-    counts.unmatched += scan.ranges.size();
+    rejections.unmatched += scan.ranges.size();
     return std::nullopt;
   }
   return std::pair{record.plan.match.pose, record.grid.match.pose};
 }
 
-/// The plan poses' pull along the robot's heading over the scans that give pairs
-/// (measure_pose_pull), with a note saying what was done with it.
-std::optional<PosePull> pull_of_pair_poses(DualLocalization& result, const RobotLog& log,
-                                           const PosePullOptions& options, bool refine) {
+/// The plan poses' pull along the robot's heading over `samples` (measure_pose_pull), with a
+/// note saying what was done with it.
+std::optional<PosePull> pull_of_pair_poses(DualLocalization& result,
+                                           const std::vector<PullSample>& samples,
+                                           const PosePullOptions& options) {
   if (!options.enabled)
     return std::nullopt;
-  std::vector<PullSample> samples;
-  for (const ScanRecord& record : result.scans) {
-    const LaserScan& scan = log.scans[record.scan];
-    if (const auto poses = pair_poses(record, scan, refine, nullptr))
-      samples.push_back({scan.timestamp, poses->first, poses->second});
-  }
   std::optional<PosePull> pull = measure_pose_pull(samples, result.plan_scale, options);
   if (!pull)
     return pull;
@@ -180,19 +182,26 @@ std::optional<PosePull> pull_of_pair_poses(DualLocalization& result, const Robot
 void make_pairs(DualLocalization& result, const RobotLog& log, const WallField& plan_walls,
                 const WallField& grid_walls, const PairExtractionOptions& options,
                 const PosePullOptions& pull_options, bool refine) {
-  result.pose_pull = pull_of_pair_poses(result, log, pull_options, refine);
+  std::vector<std::optional<std::pair<Pose2, Pose2>>> poses(result.scans.size());
+  std::vector<PullSample> samples;
+  for (std::size_t k = 0; k < result.scans.size(); ++k) {
+    const LaserScan& scan = log.scans[result.scans[k].scan];
+    poses[k] = pair_poses(result.scans[k], scan, refine, result.rejections);
+    if (poses[k])
+      samples.push_back({scan.timestamp, poses[k]->first, poses[k]->second});
+  }
+  result.pose_pull = pull_of_pair_poses(result, samples, pull_options);
   const double pull_m =
       result.pose_pull && result.pose_pull->applied ? result.pose_pull->along_m : 0.0;
   PairCollector pairs;
-  for (ScanRecord& record : result.scans) {
-    const LaserScan& scan = log.scans[record.scan];
-    const auto poses = pair_poses(record, scan, refine, &result.rejections);
-    if (!poses)
+  for (std::size_t k = 0; k < result.scans.size(); ++k) {
+    if (!poses[k])
       continue;
-    const Pose2 plan_pose = without_pull(poses->first, pull_m, result.plan_scale);
+    ScanRecord& record = result.scans[k];
+    const Pose2 plan_pose = without_pull(poses[k]->first, pull_m, result.plan_scale);
     const std::size_t before = pairs.size();
-    extract_scan_pairs(scan, plan_pose, result.plan_scale, poses->second, plan_walls, grid_walls,
-                       options, pairs, result.rejections);
+    extract_scan_pairs(log.scans[record.scan], plan_pose, result.plan_scale, poses[k]->second,
+                       plan_walls, grid_walls, options, pairs, result.rejections);
     record.pairs = pairs.size() - before;
   }
   result.pairs = pairs.pairs();

@@ -9,16 +9,23 @@ namespace floorgrid {
 /// when poses are refined, both scan matches accepted.
 bool usable_for_pairs(const ScanRecord& record, bool refine);
 
+/// What refit_plan_scale gave.
+struct ScaleRefit {
+  double scale = 1.0;       ///< world metres per plan metre
+  bool shift_used = false;  ///< whether a surface shift was fitted with it and used
+};
+
 /// Refits the plan's scale jointly with the refined plan poses of every usable scan
 /// (fit_scale; with `fit_shift`, and a shift of the walls' surfaces, used where it is at least
 /// `min_shift` world metres) and stores the refitted poses in the records; returns the scale
-/// (or `scale` when fewer than options.min_scans scans are usable, or when the scale is
+/// (`scale` when fewer than options.min_scans scans are usable, or when the scale is
 /// `registered` by the maps and the shift not used) and sets result.plan_scale_std and
 /// result.plan_surface_shift.
-double refit_plan_scale(DualLocalization& result, const RobotLog& log, const WallField& plan_walls,
-                        const FilterRunnerOptions& plan_runner, const ScaleRefitOptions& options,
-                        double scale, bool fit_shift, double min_shift, bool registered,
-                        const GridRayCaster* plan_caster = nullptr);
+ScaleRefit refit_plan_scale(DualLocalization& result, const RobotLog& log,
+                            const WallField& plan_walls, const FilterRunnerOptions& plan_runner,
+                            const ScaleRefitOptions& options, double scale, bool fit_shift,
+                            double min_shift, bool registered,
+                            const GridRayCaster* plan_caster = nullptr);
 
 /// Steps 4 and 5 of localize_dual: the plan filter tracks (track_plan) and, with an unknown
 /// scale, the scale is refitted with the refined plan poses; when the refit moved it by more

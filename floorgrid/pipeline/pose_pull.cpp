@@ -1,12 +1,13 @@
 #include "floorgrid/pipeline/pose_pull.hpp"
 
-#include <Eigen/Geometry>
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numeric>
 
 #include "floorgrid/core/statistics.hpp"
+#include "floorgrid/geometry/transform_estimation.hpp"
 
 namespace floorgrid {
 
@@ -16,26 +17,29 @@ constexpr std::size_t kBlocks = 10;        // blocks of scans in time for the st
 constexpr std::size_t kMinBlockScans = 5;  // a block with fewer scans is not counted
 constexpr std::size_t kMinBlocks = 3;      // fewer counted blocks: no standard error
 
-/// The linear part of the similarity taking the gridmap positions to the plan positions
-/// (grid metres -> plan metres); differences between nearby scans go through it.
-Eigen::Matrix2d grid_to_plan_linear(const std::vector<PullSample>& samples) {
-  Eigen::Matrix2Xd grid(2, samples.size()), plan(2, samples.size());
-  for (std::size_t k = 0; k < samples.size(); ++k) {
-    grid.col(static_cast<Eigen::Index>(k)) = samples[k].pose_in_grid.translation();
-    plan.col(static_cast<Eigen::Index>(k)) = samples[k].pose_in_plan.translation();
-  }
-  const Eigen::Matrix3d T_plan_grid = Eigen::umeyama(grid, plan, true);
-  return T_plan_grid.topLeftCorner<2, 2>();
+/// The linear part of the least-squares similarity taking the gridmap positions to the plan
+/// positions (grid metres -> plan metres); differences between nearby scans go through it.
+/// nullopt when the positions determine none (all at one place).
+std::optional<Eigen::Matrix2d> grid_to_plan_linear(const std::vector<PullSample>& samples) {
+  PairMoments moments;
+  moments.origin_in_plan = samples.front().pose_in_plan.translation();
+  moments.origin_in_grid = samples.front().pose_in_grid.translation();
+  for (const PullSample& s : samples)
+    moments.add(s.pose_in_plan.translation(), s.pose_in_grid.translation());
+  const std::optional<TransformEstimate> fit = fit_transform(moments, {});
+  if (!fit)
+    return std::nullopt;
+  return Eigen::Matrix2d(fit->T_grid_plan.topLeftCorner<2, 2>().inverse());
 }
 
 /// Each scan's comparisons with the later visits of its place: the plan poses' difference less
 /// the gridmap poses' through the similarity is pull times the difference of the headings'
 /// unit vectors; projected on that difference, one measure of the pull (world metres).
 std::vector<std::vector<double>> compare_visits(const std::vector<PullSample>& samples,
-                                                double plan_scale, const PosePullOptions& options,
+                                                const Eigen::Matrix2d& A, double plan_scale,
+                                                const PosePullOptions& options,
                                                 std::size_t& comparisons) {
   const std::size_t n = samples.size();
-  const Eigen::Matrix2d A = grid_to_plan_linear(samples);
   // |h_i - h_j|^2 = 2 - 2 cos(turn)
   const double min_heading_change = 2.0 - 2.0 * std::cos(options.min_turn);
   std::vector<std::size_t> by_x(n);
@@ -102,9 +106,12 @@ std::optional<PosePull> measure_pose_pull(const std::vector<PullSample>& samples
                                           const PosePullOptions& options) {
   if (samples.size() < 2)
     return std::nullopt;
+  const std::optional<Eigen::Matrix2d> A = grid_to_plan_linear(samples);
+  if (!A)
+    return std::nullopt;
   PosePull pull;
   const std::vector<std::vector<double>> per_scan =
-      compare_visits(samples, plan_scale, options, pull.comparisons);
+      compare_visits(samples, *A, plan_scale, options, pull.comparisons);
   std::vector<double> values;  // one per scan, in time order
   for (const std::vector<double>& v : per_scan) {
     if (!v.empty())

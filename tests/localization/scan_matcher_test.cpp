@@ -155,7 +155,7 @@ TEST(ScaleFit, TellsASurfaceShiftFromTheScale) {
   for (const ScanObservation& scan : scans)
     views.push_back(&scan);
   // The scale alone: every room looks smaller than drawn by two faces' shifts, so the scale
-  // comes out low by about that share (1-1.25% here).
+  // comes out low by about that share (1.1% here).
   const ScaleFit alone = fit_scale(drawn.field, views, starts, kScale * 1.005);
   EXPECT_LT(alone.scale / kScale - 1.0, -0.005);
   EXPECT_EQ(alone.surface_shift, 0.0);
