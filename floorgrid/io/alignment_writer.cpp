@@ -181,14 +181,18 @@ json metrics_json(const Alignment& a, const std::string& dataset, const Alignmen
          {{"accepted", c.maps_accepted},
           {"plan_match", c.maps_match.judged ? number(c.maps_match.score.score) : json(nullptr)},
           {"failure", c.maps_failure.empty() ? json(nullptr) : json(c.maps_failure)}}},
-        {"agreement", c.compared ? json{{"agree", c.agree},
-                                        {"median_m", number(c.disagreement_median_m)},
-                                        {"p90_m", number(c.disagreement_p90_m)},
-                                        {"tolerance_m", number(c.disagreement_tolerance_m)},
-                                        {"run_scale", number(c.run_scale)},
-                                        {"maps_scale", number(c.maps_scale)},
-                                        {"scale_tolerance", number(c.scale_tolerance)}}
-                                 : json(nullptr)}};
+        {"agreement",
+         c.compared ? json{{"agree", c.agree},
+                           {"median_m", number(c.disagreement_median_m)},
+                           {"p90_m", number(c.disagreement_p90_m)},
+                           {"tolerance_m", number(c.disagreement_tolerance_m)},
+                           {"run_scale", number(c.run_scale)},
+                           {"maps_scale", number(c.maps_scale)},
+                           {"run_scale_at_drawn_walls", c.run_scale_at_drawn_walls > 0.0
+                                                            ? number(c.run_scale_at_drawn_walls)
+                                                            : json(nullptr)},
+                           {"scale_tolerance", number(c.scale_tolerance)}}
+                    : json(nullptr)}};
   }
   if (a.maps) {
     const MapAlignment& m = *a.maps;
@@ -242,6 +246,7 @@ json metrics_json(const Alignment& a, const std::string& dataset, const Alignmen
   // fitted with the scale.
   j["plan_surface_shift_m"] = number(l.plan_surface_shift);
   j["plan_surface_shift_std_m"] = number(l.plan_surface_shift_std);
+  j["plan_surface_shift_used"] = l.plan_surface_shift_used;
   if (!floorplan_units.is_null())
     j["floorplan_units"] = floorplan_units;
   j["localization"] = {{"grid_start_scan", l.grid_start_scan},

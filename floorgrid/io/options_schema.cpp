@@ -1090,7 +1090,8 @@ void visit(OptionVisitor& v, ScaleRefitOptions& o) {
               {"always", SurfaceShift::always},
               {"never", SurfaceShift::never}},
              "Fit with the scale a shift of every plan wall's surface towards the laser (faces in "
-             "front of the drawn lines): auto for a vector plan, whose walls are lines");
+             "front of the drawn lines or ink): auto uses it where at least min_shift, always "
+             "whatever its size");
   v.field("refit_registered_scale", o.refit_registered_scale,
           {.unit = "",
            .doc = "Refit also a scale the maps' registration gave, where the surface shift is "
@@ -1098,8 +1099,14 @@ void visit(OptionVisitor& v, ScaleRefitOptions& o) {
            .choices = {}});
   v.field("min_shift", o.min_shift,
           {.unit = "m",
-           .doc = "The fitted shift is used only where it is at least this large (else the "
-                  "scale alone, and a registered scale kept)",
+           .doc = "With auto, the fitted shift is used only where it is at least this large "
+                  "(else the scale alone, and a registered scale kept)",
+           .choices = {},
+           .range = kNonNegative});
+  v.field("min_shift_pixels", o.min_shift_pixels,
+          {.unit = "",
+           .doc = "With auto, on a raster plan the shift is used only where it is also at least "
+                  "this many of its pixels (within a pixel its ink's edges do not place the faces)",
            .choices = {},
            .range = kNonNegative});
   v.field("min_scans", o.min_scans,
@@ -1133,6 +1140,12 @@ void visit(OptionVisitor& v, ScaleRefitOptions& o) {
            .doc = "Tracking passes of the plan filter at most",
            .choices = {},
            .range = between(1, 100)});
+  v.field("retrack_min_share", o.retrack_min_share,
+          {.unit = "",
+           .doc = "A pass tracked again is kept only where at least this share of the last "
+                  "pass's matched scans matched again (else the last pass's poses and scale stay)",
+           .choices = {},
+           .range = between(0, 1)});
 }
 
 void visit(OptionVisitor& v, DualCheckOptions& o) {

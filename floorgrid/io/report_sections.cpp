@@ -413,12 +413,16 @@ std::string wall_slide_paragraph(const json& slide) {
 std::string agreement_paragraph(const json& a) {
   if (!a.is_object())
     return {};
+  const json& drawn = json_at(a, {"run_scale_at_drawn_walls"});
   return fmt::format(
       "<p>The run's pairs against the maps' bent map: <b>{}</b> (median distance {}, 90% under "
-      "{}, tolerance {}; plan scale {} from the run, {} from the maps, tolerance {}).</p>\n",
+      "{}, tolerance {}; plan scale {} from the run{}, {} from the maps, tolerance {}).</p>\n",
       a.value("agree", false) ? "they agree" : "they disagree",
       format_metres(json_at(a, {"median_m"})), format_metres(json_at(a, {"p90_m"})),
       format_metres(json_at(a, {"tolerance_m"})), format_ratio(json_at(a, {"run_scale"})),
+      drawn.is_number()
+          ? fmt::format(" ({} without the walls' faces, on the drawn walls)", format_ratio(drawn))
+          : std::string(),
       format_ratio(json_at(a, {"maps_scale"})), format_percent(json_at(a, {"scale_tolerance"})));
 }
 

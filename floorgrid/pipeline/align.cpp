@@ -268,6 +268,7 @@ void choose_pair_source(const AlignmentInputs& in, const AlignmentOptions& optio
                       .pair_scans = 0,
                       .scans = l.scans.size(),
                       .converged_fraction = l.converged_fraction,
+                      .scale_at_drawn_walls = l.plan_scale_at_drawn_walls,
                       .match = {},
                       .match_accepted = false};
   for (const ScanRecord& r : l.scans)

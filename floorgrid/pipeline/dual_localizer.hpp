@@ -258,8 +258,8 @@ struct DualCheckOptions {
 
 /// Whether the scale refit fits a surface shift (ScaleRefitOptions::surface_shift).
 enum class SurfaceShift {
-  automatic,  ///< for a vector plan
-  always,     ///< for every plan
+  automatic,  ///< fitted on every plan, used where at least min_shift
+  always,     ///< fitted on every plan and used whatever its size
   never,      ///< the scale alone, as the refit did before
 };
 
@@ -272,8 +272,10 @@ struct ScaleRefitOptions {
   /// (fit_scale's fit_shift; DualLocalization::plan_surface_shift). A vector plan's walls are
   /// lines, often single ones, where the laser meets faces half a wall's thickness in front:
   /// fitted with the scale alone they shrink every room, bias the scale low and pull the poses
-  /// forward. A raster plan's scans already meet its ink where its faces are (plan_wall_line),
-  /// so with automatic only vector plans get the shift.
+  /// forward. A raster plan's scans meet its ink's edges (plan_wall_line), where its faces are
+  /// when its strokes are drawn as thick as the walls; a wall drawn as a thin line has its faces
+  /// in front of them (the Halmstad HIH layout's 1-pixel strokes: 0.054 m, and the scale 1.9-2%
+  /// low without the shift).
   SurfaceShift surface_shift = SurfaceShift::automatic;
   /// Refit also a scale the maps' registration gave (PlanLocation::keep_scale) where the
   /// refit fits the surface shift (fitted with the scale alone, the walls' thickness biased
@@ -283,6 +285,13 @@ struct ScaleRefitOptions {
   /// walls' faces lie on its lines has its scale fitted alone, as before, and keeps a scale the
   /// registration gave.
   double min_shift = 0.01;
+  /// On a raster plan the shift is used only where it is also at least this many of its
+  /// pixels (world metres at the searched scale): within a pixel the ink's edges do not place
+  /// the faces, and on a building of corridors the shift and the scale trade off. On
+  /// fr079's real drawing (0.057 m pixels) the shift came out 0.022-0.029 m over seeds 1-3
+  /// and moved the scale 4.2-4.7% up, away from its hand-made pairs' similarity and 0.7%
+  /// apart; on the Halmstad HIH layout's 1-pixel strokes, 1.1-1.9 pixels (0.054-0.095 m).
+  double min_shift_pixels = 1.0;
   std::size_t min_scans = 10;  ///< matched scans the refit needs, else the search's scale stays
   int max_iterations = 30;     ///< of the joint Gauss-Newton
   int jackknife_blocks = 20;   ///< blocks of scans for the scale's standard deviation
@@ -293,6 +302,12 @@ struct ScaleRefitOptions {
   /// the refitted scale (and the scale is refitted on that), at most max_plan_passes passes.
   double retrack_change = 0.002;
   int max_plan_passes = 2;
+  /// A pass tracked again is kept only when at least this share of the last pass's matched
+  /// scans (those the refit used) matched again; else the last pass's poses and scale stay:
+  /// house seed 3 of bench/real_matrix.sh's drawings, tracked again at a scale its first
+  /// pass's shift moved, matched 23 scans where the first had 360, and their refit put the
+  /// scale 8% off.
+  double retrack_min_share = 0.5;
 };
 
 /// Where the scan matchers meet a raster plan's walls (DualLocalizerOptions::plan_wall_line).
@@ -430,6 +445,14 @@ struct DualLocalization {
   /// deviation.
   double plan_surface_shift = 0.0;
   double plan_surface_shift_std = 0.0;
+  /// Whether the pairs' scale and poses were refitted with that shift (it was at least
+  /// ScaleRefitOptions::min_shift)...
+  bool plan_surface_shift_used = false;
+  /// ... and then the scale refitted on the same scans without it (0 when the shift was not
+  /// used): how far the faces moved the scale, which bounds how far they may have moved the
+  /// maps' registration's, which meets the gridmap's walls on the drawn lines or ink edges
+  /// (RunPairsSummary::scale_at_drawn_walls).
+  double plan_scale_at_drawn_walls = 0.0;
   bool plan_scale_estimated = false;   ///< whether it was searched
   double plan_scale_search = 0.0;      ///< the particle filter's search result
   double plan_scale_search_std = 0.0;  ///< and its spread

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <map>
 #include <optional>
+#include <tuple>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -66,7 +68,16 @@ ScaleRefit refit_plan_scale(DualLocalization& result, const RobotLog& log,
         "the plan's walls were met {:.3f} m (+-{:.3f} m) nearer the laser than drawn{}",
         result.plan_surface_shift, result.plan_surface_shift_std,
         shift_used ? ", fitted with the scale" : ": on their lines, so the scale is fitted alone"));
-    if (!shift_used) {
+    if (shift_used) {
+      result.plan_scale_at_drawn_walls =
+          fit_scale(plan_walls, views, poses, scale, plan_runner.match, options.max_iterations,
+                    options.jackknife_blocks)
+              .scale;
+      result.notes.push_back(
+          fmt::format("fitted on the drawn walls without it, as the maps' registration meets "
+                      "them, the plan scale would be {:.4f}",
+                      result.plan_scale_at_drawn_walls));
+    } else {
       // The walls' faces lie on the drawn lines: the fit as it was without the shift, and a
       // registered scale kept with the scans' poses (the registration is not biased here).
       if (registered) {
@@ -90,26 +101,50 @@ void track_plan_and_refit_scale(const DualMaps& maps, const RobotLog& log,
                                 DualLocalization& result, const DualProgressCallback& progress,
                                 bool vector_plan) {
   const ScaleRefitOptions& refit_options = options.scale_refit;
-  // Whether the refit fits the shift: decided by the first pass's (min_shift), then kept, so
-  // that a pass tracked at a scale the shift moved is refitted the same way.
-  bool fit_shift = refit_options.surface_shift == SurfaceShift::always ||
-                   (refit_options.surface_shift == SurfaceShift::automatic && vector_plan);
+  // Whether the refit fits the shift: decided by the first pass's (min_shift; none with
+  // always), then kept, so that a pass tracked at a scale the shift moved is refitted the same
+  // way.
+  bool fit_shift = refit_options.surface_shift != SurfaceShift::never;
+  double min_shift = 0.0;
+  if (refit_options.surface_shift == SurfaceShift::automatic) {
+    min_shift = refit_options.min_shift;
+    if (!vector_plan)
+      min_shift = std::max(
+          min_shift, refit_options.min_shift_pixels * maps.plan().resolution() * location.scale);
+  }
   const bool refit_scale =
       result.plan_scale_estimated && options.refine_poses && refit_options.enabled &&
       (!location.keep_scale || (refit_options.refit_registered_scale && fit_shift));
   if (location.keep_scale && !refit_scale)
     result.notes.push_back(kKeptRegisteredScale);
+  // The last pass's result and location, refitted, kept while the plan is tracked again.
+  std::optional<std::pair<DualLocalization, PlanLocation>> last;
+  std::size_t last_matched = 0;
   for (int pass = 1;; ++pass) {
     auto clock = std::chrono::steady_clock::now();
     track_plan(maps, log, options, location, result, progress);
     result.localize_seconds += seconds_since(clock);
     if (!refit_scale)
       break;
+    const auto matched = static_cast<std::size_t>(
+        std::count_if(result.scans.begin(), result.scans.end(),
+                      [](const ScanRecord& r) { return usable_for_pairs(r, true); }));
+    if (last && static_cast<double>(matched) <
+                    refit_options.retrack_min_share * static_cast<double>(last_matched)) {
+      const double seconds = result.localize_seconds, search = result.scale_search_seconds;
+      std::tie(result, location) = std::move(*last);
+      result.localize_seconds = seconds;
+      result.scale_search_seconds = search;
+      result.notes.push_back(
+          fmt::format("tracked again at the refitted scale, the plan matched {} scans where it had "
+                      "matched {}: the last pass's poses and scale kept",
+                      matched, last_matched));
+      break;
+    }
     clock = std::chrono::steady_clock::now();
-    const ScaleRefit refitted =
-        refit_plan_scale(result, log, maps.plan_walls(), options.plan.runner, refit_options,
-                         location.scale, fit_shift, pass == 1 ? refit_options.min_shift : 0.0,
-                         location.keep_scale && pass == 1, maps.plan_rays());
+    const ScaleRefit refitted = refit_plan_scale(
+        result, log, maps.plan_walls(), options.plan.runner, refit_options, location.scale,
+        fit_shift, pass == 1 ? min_shift : 0.0, location.keep_scale && pass == 1, maps.plan_rays());
     fit_shift = refitted.shift_used;
     const double refit = refitted.scale;
     result.scale_search_seconds += seconds_since(clock);
@@ -120,11 +155,16 @@ void track_plan_and_refit_scale(const DualMaps& maps, const RobotLog& log,
       break;
     }
     location.scale = refit;
+    result.plan_surface_shift_used = refitted.shift_used;
+    if (!refitted.shift_used)
+      result.plan_scale_at_drawn_walls = 0.0;
     if (location.given)
       location.registration = registration_of(*location.given, refit);
     if (change <= refit_options.retrack_change || pass >= refit_options.max_plan_passes)
       break;
     result.notes.push_back("the plan tracked again with the refitted scale");
+    last.emplace(result, location);
+    last_matched = matched;
   }
   result.plan_scale = location.scale;
 }

@@ -30,8 +30,8 @@ ScaleRefit refit_plan_scale(DualLocalization& result, const RobotLog& log,
 /// Steps 4 and 5 of localize_dual: the plan filter tracks (track_plan) and, with an unknown
 /// scale, the scale is refitted with the refined plan poses; when the refit moved it by more
 /// than ScaleRefitOptions::retrack_change, the plan filter tracks again at the new scale.
-/// Sets result.plan_scale. `vector_plan`: the plan is a vector drawing (ScaleRefitOptions::
-/// surface_shift).
+/// Sets result.plan_scale and result.plan_surface_shift_used. `vector_plan`: the plan is a
+/// vector drawing, whose lines place the walls exactly (ScaleRefitOptions::min_shift_pixels).
 void track_plan_and_refit_scale(const DualMaps& maps, const RobotLog& log,
                                 const DualLocalizerOptions& options, PlanLocation& location,
                                 DualLocalization& result, const DualProgressCallback& progress,

@@ -151,8 +151,12 @@ void compare_with_maps(const RunPairsSummary& run, const MapAlignment& maps,
   c.disagreement_p90_m = quantile(distances, 0.9);
   c.run_scale = run.plan_scale;
   c.maps_scale = maps.scale.scale;
+  c.run_scale_at_drawn_walls = run.scale_at_drawn_walls;
+  const double faces =
+      run.scale_at_drawn_walls > 0.0 ? std::abs(c.run_scale - run.scale_at_drawn_walls) : 0.0;
   c.scale_tolerance =
-      c.maps_scale * std::max(o.min_scale_tolerance, o.scale_sigmas * maps.scale.relative_std);
+      c.maps_scale * std::max(o.min_scale_tolerance, o.scale_sigmas * maps.scale.relative_std) +
+      faces;
   c.agree = c.disagreement_median_m <= c.disagreement_tolerance_m &&
             std::abs(c.run_scale - c.maps_scale) <= c.scale_tolerance;
 }

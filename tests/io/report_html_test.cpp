@@ -284,6 +284,13 @@ TEST(ReportHtml, ARunFilledByTheMapsCountsOnlyTheFillAndShowsTheAgreement) {
        {io::format_metres(0.12), io::format_metres(0.5), io::format_ratio(json(1.0213)),
         io::format_ratio(json(1.0305)), io::format_percent(json(0.02))})
     EXPECT_NE(html.find(expected), std::string::npos) << expected;
+  EXPECT_EQ(html.find("without the walls' faces"), std::string::npos);
+  // A scale refitted with the walls' faces: the report gives it without them too.
+  m["sources"]["agreement"]["run_scale_at_drawn_walls"] = 1.0111;
+  write_folder(dir.path(), m, true);
+  const std::string refitted = test::read_file(io::write_report_html(dir.path()));
+  EXPECT_NE(refitted.find(io::format_ratio(json(1.0111)) + " without the walls' faces"),
+            std::string::npos);
 }
 
 TEST(ReportHtml, TheMapsStandingInForAFailedRunSaySoAndWhy) {

@@ -204,6 +204,34 @@ TEST(PairSources, WhenTheyDisagreeThePlanMatchDecides) {
   EXPECT_EQ(c.chosen, "maps");
 }
 
+TEST(PairSources, HowFarTheWallsFacesMovedTheRunsScaleWidensTheScaleTolerance) {
+  const OccupancyGrid map = box_map();
+  // The pairs where the maps put them, but the run's scale 2.6% above the maps' (beyond the
+  // 2% floor of the scale tolerance), as on HIH's thin-stroked drawing: the run fitted the
+  // walls' faces in front of the ink, the maps' registration met them on the ink.
+  const ReferencePairs pairs = wall_pairs(0.0, 20.0, 0.5);
+  const MapAlignment maps = maps_of(0.5);
+  RunPairsSummary run = run_of(pairs, 2.0 * 1.026, 500, 0.5);
+  PairSourceCheck c = check_pair_sources(run, &maps, map, {}, judge_maps_at(0.5));
+  EXPECT_NEAR(c.scale_tolerance, 2.0 * 0.02, 1e-12);
+  EXPECT_EQ(c.run_scale_at_drawn_walls, 0.0);
+  EXPECT_FALSE(c.agree);
+  EXPECT_EQ(c.chosen, "maps");
+  // Without the faces' offset the run's scale came out 1.5% above the maps': the faces moved it
+  // by 1.1% of 2, which the maps' may be off by too. They agree; the run's pairs are used.
+  run.scale_at_drawn_walls = 2.0 * 1.015;
+  c = check_pair_sources(run, &maps, map, {}, judge_maps_at(0.5));
+  EXPECT_NEAR(c.scale_tolerance, 2.0 * (0.02 + 0.011), 1e-12);
+  EXPECT_NEAR(c.run_scale_at_drawn_walls, 2.0 * 1.015, 1e-12);
+  EXPECT_TRUE(c.agree);
+  EXPECT_EQ(c.chosen, "run");
+  // Moved by 0.3% only, the 2.6% stays a disagreement.
+  run.scale_at_drawn_walls = 2.0 * 1.023;
+  c = check_pair_sources(run, &maps, map, {}, judge_maps_at(0.5));
+  EXPECT_FALSE(c.agree);
+  EXPECT_EQ(c.chosen, "maps");
+}
+
 TEST(PairSources, ARunThatFailedFallsBackOnTheMaps) {
   const OccupancyGrid map = box_map();
   const MapAlignment maps = maps_of(0.5);
