@@ -414,6 +414,13 @@ std::string agreement_paragraph(const json& a) {
   if (!a.is_object())
     return {};
   const json& drawn = json_at(a, {"run_scale_at_drawn_walls"});
+  // scale_tolerance is a difference of scales: shown as a share of the maps' scale.
+  const json& maps_scale = json_at(a, {"maps_scale"});
+  const json& tolerance = json_at(a, {"scale_tolerance"});
+  const json relative =
+      tolerance.is_number() && maps_scale.is_number() && maps_scale.get<double>() > 0.0
+          ? json(tolerance.get<double>() / maps_scale.get<double>())
+          : json(nullptr);
   return fmt::format(
       "<p>The run's pairs against the maps' bent map: <b>{}</b> (median distance {}, 90% under "
       "{}, tolerance {}; plan scale {} from the run{}, {} from the maps, tolerance {}).</p>\n",
@@ -423,7 +430,7 @@ std::string agreement_paragraph(const json& a) {
       drawn.is_number()
           ? fmt::format(" ({} without the walls' faces, on the drawn walls)", format_ratio(drawn))
           : std::string(),
-      format_ratio(json_at(a, {"maps_scale"})), format_percent(json_at(a, {"scale_tolerance"})));
+      format_ratio(maps_scale), format_percent(relative));
 }
 
 /// The maps' pairs among the pairs: those that filled where the run did not reach, or all of

@@ -275,14 +275,14 @@ TEST(ReportHtml, ARunFilledByTheMapsCountsOnlyTheFillAndShowsTheAgreement) {
                     {"tolerance_m", 0.5},
                     {"run_scale", 1.0213},
                     {"maps_scale", 1.0305},
-                    {"scale_tolerance", 0.02}}}};
+                    {"scale_tolerance", 0.0412}}}};
   write_folder(dir.path(), m, true);
   const std::string html = test::read_file(io::write_report_html(dir.path()));
   EXPECT_NE(html.find("and " + io::format_count(37) + " from the maps alone"), std::string::npos);
   EXPECT_NE(html.find("<b>they agree</b>"), std::string::npos);
   for (const std::string& expected :
        {io::format_metres(0.12), io::format_metres(0.5), io::format_ratio(json(1.0213)),
-        io::format_ratio(json(1.0305)), io::format_percent(json(0.02))})
+        io::format_ratio(json(1.0305)), io::format_percent(json(0.0412 / 1.0305))})
     EXPECT_NE(html.find(expected), std::string::npos) << expected;
   EXPECT_EQ(html.find("without the walls' faces"), std::string::npos);
   // A scale refitted with the walls' faces: the report gives it without them too.
