@@ -246,7 +246,7 @@ json metrics_json(const Alignment& a, const std::string& dataset, const Alignmen
   // fitted with the scale.
   j["plan_surface_shift_m"] = number(l.plan_surface_shift);
   j["plan_surface_shift_std_m"] = number(l.plan_surface_shift_std);
-  j["plan_surface_shift_used"] = l.plan_surface_shift_used;
+  j["plan_surface_shift_used"] = l.plan_scale_at_drawn_walls > 0.0;
   if (!floorplan_units.is_null())
     j["floorplan_units"] = floorplan_units;
   j["localization"] = {{"grid_start_scan", l.grid_start_scan},

@@ -289,7 +289,7 @@ struct ScaleRefitOptions {
   /// pixels (world metres at the searched scale): within a pixel the ink's edges do not place
   /// the faces, and on a building of corridors the shift and the scale trade off. On
   /// fr079's real drawing (0.057 m pixels) the shift came out 0.022-0.029 m over seeds 1-3
-  /// and moved the scale 4.2-4.7% up, away from its hand-made pairs' similarity and 0.7%
+  /// and moved the scale 3.9-4.7% up, away from its hand-made pairs' similarity and 0.7%
   /// apart; on the Halmstad HIH layout's 1-pixel strokes, 1.1-1.9 pixels (0.054-0.095 m).
   double min_shift_pixels = 1.0;
   std::size_t min_scans = 10;  ///< matched scans the refit needs, else the search's scale stays
@@ -306,7 +306,7 @@ struct ScaleRefitOptions {
   /// scans (those the refit used) matched again; else the last pass's poses and scale stay:
   /// house seed 3 of bench/real_matrix.sh's drawings, tracked again at a scale its first
   /// pass's shift moved, matched 23 scans where the first had 360, and their refit put the
-  /// scale 8% off.
+  /// scale 8.9% off.
   double retrack_min_share = 0.5;
 };
 
@@ -445,11 +445,10 @@ struct DualLocalization {
   /// deviation.
   double plan_surface_shift = 0.0;
   double plan_surface_shift_std = 0.0;
-  /// Whether the pairs' scale and poses were refitted with that shift (it was at least
-  /// ScaleRefitOptions::min_shift)...
-  bool plan_surface_shift_used = false;
-  /// ... and then the scale refitted on the same scans without it (0 when the shift was not
-  /// used): how far the faces moved the scale, which bounds how far they may have moved the
+  /// Where the pairs' scale and poses were refitted with that shift (it was at least
+  /// ScaleRefitOptions::min_shift), the scale refitted on the same scans without it; 0 when
+  /// the shift was not used (metrics.json plan_surface_shift_used): how far the faces moved the
+  /// scale, which bounds how far they may have moved the
   /// maps' registration's, which meets the gridmap's walls on the drawn lines or ink edges
   /// (RunPairsSummary::scale_at_drawn_walls).
   double plan_scale_at_drawn_walls = 0.0;

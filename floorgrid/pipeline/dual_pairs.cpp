@@ -51,41 +51,41 @@ ScaleRefit refit_plan_scale(DualLocalization& result, const RobotLog& log,
   }
   if (points.size() < options.min_scans) {
     result.notes.push_back("too few matched scans to refit the plan scale: kept the search's");
-    return {scale, false};
+    return {scale};
   }
   std::vector<const ScanObservation*> views;
   views.reserve(points.size());
   for (const ScanObservation& p : points)
     views.push_back(&p);
-  ScaleFit fit = fit_scale(plan_walls, views, poses, scale, plan_runner.match,
-                           options.max_iterations, options.jackknife_blocks, fit_shift);
-  bool shift_used = false;
+  const auto fit_with = [&](bool shift) {
+    return fit_scale(plan_walls, views, poses, scale, plan_runner.match, options.max_iterations,
+                     options.jackknife_blocks, shift);
+  };
+  ScaleFit fit = fit_with(fit_shift);
+  ScaleRefit refit;
   if (fit_shift) {
     result.plan_surface_shift = fit.surface_shift * fit.scale;
     result.plan_surface_shift_std = fit.surface_shift_std * fit.scale;
-    shift_used = std::abs(result.plan_surface_shift) >= min_shift;
+    const bool shift_used = std::abs(result.plan_surface_shift) >= min_shift;
     result.notes.push_back(fmt::format(
         "the plan's walls were met {:.3f} m (+-{:.3f} m) nearer the laser than drawn{}",
         result.plan_surface_shift, result.plan_surface_shift_std,
         shift_used ? ", fitted with the scale" : ": on their lines, so the scale is fitted alone"));
+    if (!shift_used && registered) {
+      // The walls' faces lie on the drawn lines: a registered scale is kept with the scans'
+      // poses (the registration is not biased here).
+      result.notes.push_back(kKeptRegisteredScale);
+      return {scale};
+    }
+    ScaleFit alone = fit_with(false);
     if (shift_used) {
-      result.plan_scale_at_drawn_walls =
-          fit_scale(plan_walls, views, poses, scale, plan_runner.match, options.max_iterations,
-                    options.jackknife_blocks)
-              .scale;
+      refit.scale_at_drawn_walls = alone.scale;
       result.notes.push_back(
           fmt::format("fitted on the drawn walls without it, as the maps' registration meets "
                       "them, the plan scale would be {:.4f}",
-                      result.plan_scale_at_drawn_walls));
+                      alone.scale));
     } else {
-      // The walls' faces lie on the drawn lines: the fit as it was without the shift, and a
-      // registered scale kept with the scans' poses (the registration is not biased here).
-      if (registered) {
-        result.notes.push_back(kKeptRegisteredScale);
-        return {scale, false};
-      }
-      fit = fit_scale(plan_walls, views, poses, scale, plan_runner.match, options.max_iterations,
-                      options.jackknife_blocks);
+      fit = std::move(alone);  // as the fit was without the shift
     }
   }
   result.plan_scale_std = fit.scale_std;
@@ -93,7 +93,8 @@ ScaleRefit refit_plan_scale(DualLocalization& result, const RobotLog& log,
     result.scans[which[k]].plan.match.pose = fit.poses[k];
   result.notes.push_back("plan scale refitted on " + std::to_string(fit.scans) +
                          " scans by joint scan matching");
-  return {fit.scale, shift_used};
+  refit.scale = fit.scale;
+  return refit;
 }
 
 void track_plan_and_refit_scale(const DualMaps& maps, const RobotLog& log,
@@ -145,7 +146,7 @@ void track_plan_and_refit_scale(const DualMaps& maps, const RobotLog& log,
     const ScaleRefit refitted = refit_plan_scale(
         result, log, maps.plan_walls(), options.plan.runner, refit_options, location.scale,
         fit_shift, pass == 1 ? min_shift : 0.0, location.keep_scale && pass == 1, maps.plan_rays());
-    fit_shift = refitted.shift_used;
+    fit_shift = refitted.shift_used();
     const double refit = refitted.scale;
     result.scale_search_seconds += seconds_since(clock);
     const double change = std::abs(refit / location.scale - 1.0);
@@ -155,9 +156,7 @@ void track_plan_and_refit_scale(const DualMaps& maps, const RobotLog& log,
       break;
     }
     location.scale = refit;
-    result.plan_surface_shift_used = refitted.shift_used;
-    if (!refitted.shift_used)
-      result.plan_scale_at_drawn_walls = 0.0;
+    result.plan_scale_at_drawn_walls = refitted.scale_at_drawn_walls;
     if (location.given)
       location.registration = registration_of(*location.given, refit);
     if (change <= refit_options.retrack_change || pass >= refit_options.max_plan_passes)

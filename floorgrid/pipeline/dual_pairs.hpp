@@ -11,8 +11,11 @@ bool usable_for_pairs(const ScanRecord& record, bool refine);
 
 /// What refit_plan_scale gave.
 struct ScaleRefit {
-  double scale = 1.0;       ///< world metres per plan metre
-  bool shift_used = false;  ///< whether a surface shift was fitted with it and used
+  double scale = 1.0;  ///< world metres per plan metre
+  /// Where a surface shift was fitted with it and used: the same scans' scale fitted without
+  /// it, on the drawn walls (DualLocalization::plan_scale_at_drawn_walls); 0 otherwise.
+  double scale_at_drawn_walls = 0.0;
+  bool shift_used() const { return scale_at_drawn_walls > 0.0; }
 };
 
 /// Refits the plan's scale jointly with the refined plan poses of every usable scan
@@ -30,7 +33,7 @@ ScaleRefit refit_plan_scale(DualLocalization& result, const RobotLog& log,
 /// Steps 4 and 5 of localize_dual: the plan filter tracks (track_plan) and, with an unknown
 /// scale, the scale is refitted with the refined plan poses; when the refit moved it by more
 /// than ScaleRefitOptions::retrack_change, the plan filter tracks again at the new scale.
-/// Sets result.plan_scale and result.plan_surface_shift_used. `vector_plan`: the plan is a
+/// Sets result.plan_scale and result.plan_scale_at_drawn_walls. `vector_plan`: the plan is a
 /// vector drawing, whose lines place the walls exactly (ScaleRefitOptions::min_shift_pixels).
 void track_plan_and_refit_scale(const DualMaps& maps, const RobotLog& log,
                                 const DualLocalizerOptions& options, PlanLocation& location,

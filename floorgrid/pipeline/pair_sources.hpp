@@ -115,7 +115,7 @@ struct RunPairsSummary {
   /// (DualLocalization::plan_scale_at_drawn_walls), when its pairs' scale was refitted with
   /// the walls' faces off them; 0 otherwise. The maps' registration meets the gridmap's walls
   /// on the drawn ones, so the faces bias its scale too: by up to as much as they moved the
-  /// run's (on HIH's thin strokes the maps' scale came out 2-2.7% low, the run's 1.2% low
+  /// run's (on HIH's thin strokes the maps' scale came out 2.3-2.7% low, the run's 1.2% low
   /// without the offset and 0.1% with it; on the house DXF the maps' 1.1% low, the run's 4.7%
   /// without it).
   double scale_at_drawn_walls = 0.0;
