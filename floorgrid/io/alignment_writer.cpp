@@ -63,9 +63,11 @@ json model_metrics_json(const ModelAlignment& m) {
   j["cv_folds"] = cv ? json(cv->folds) : json(nullptr);
   j["cv_block_m"] = cv && cv->kind == "blocked" ? number(cv->block_size) : json(nullptr);
   if (const std::optional<ErrorModel>& u = r.model->error_model()) {
-    // Extension: the model's std_m = sqrt(base_std_m^2 + (growth d)^2), d from the nearest pair.
+    // Extension: the model's std_m = sqrt(base_std_m^2 + (growth d)^2 + shared_std_m^2), d from
+    // the nearest pair.
     j["uncertainty"] = {{"base_std_m", number(u->base_std_m)},
                         {"growth", number(u->growth)},
+                        {"shared_std_m", number(u->shared_std_m)},
                         {"residuals", u->residuals}};
   }
   j["rms_m"] = number(r.summary.rms_m);
@@ -163,6 +165,11 @@ json metrics_json(const Alignment& a, const std::string& dataset, const Alignmen
   pairs["fallback"] =
       a.sources && !a.sources->fallback.empty() ? json(a.sources->fallback) : json(nullptr);
   j["pairs"] = pairs;
+  // The bias every pair shares, in every model's std_m (PairSourceOptions::shared_bias).
+  j["shared_bias"] = {{"std_m", number(a.shared_bias.std_m)},
+                      {"from", a.shared_bias.from},
+                      {"sources_m", number(a.shared_bias.sources_m)},
+                      {"faces_m", number(a.shared_bias.faces_m)}};
   if (a.sources) {
     // The run's pairs judged on their own and against the maps' alignment (SPEC revision 3).
     const PairSourceCheck& c = *a.sources;
@@ -185,6 +192,7 @@ json metrics_json(const Alignment& a, const std::string& dataset, const Alignmen
          c.compared ? json{{"agree", c.agree},
                            {"median_m", number(c.disagreement_median_m)},
                            {"p90_m", number(c.disagreement_p90_m)},
+                           {"local_median_m", number(c.disagreement_local_median_m)},
                            {"tolerance_m", number(c.disagreement_tolerance_m)},
                            {"run_scale", number(c.run_scale)},
                            {"maps_scale", number(c.maps_scale)},

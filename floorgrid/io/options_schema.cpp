@@ -127,6 +127,12 @@ void visit(OptionVisitor& v, ErrorModelOptions& o) {
            .doc = "Weight of the global fit against the nearby held-out errors",
            .choices = {},
            .range = above_to(0.0, 1e6)});
+  v.field("shared_std", o.shared_std,
+          {.unit = "m",
+           .doc = "A bias all pairs share, added to every std_m in quadrature (align sets it "
+                  "from its two pair sources' disagreement when larger)",
+           .choices = {},
+           .range = between(0, 1e3)});
 }
 
 void visit(OptionVisitor& v, CrossValidationOptions& o) {
@@ -1635,6 +1641,18 @@ void visit(OptionVisitor& v, PairSourceOptions& o) {
                   "farther than this from every run pair are added (0: none)",
            .choices = {},
            .range = kNonNegative});
+  v.field("shared_bias", o.shared_bias,
+          {.unit = "",
+           .doc = "Every model's std_m carries a bias all pairs share: where the run's pairs and "
+                  "the maps' alignment agree, their distance averaged per place; with the maps' "
+                  "pairs alone, their scale spread over the pairs' extent; and the outer walls' "
+                  "faces neither took out",
+           .choices = {}});
+  v.field("bias_cell", o.bias_cell,
+          {.unit = "m",
+           .doc = "... that distance averaged, as vectors, over cells this wide",
+           .choices = {},
+           .range = above_to(0.0, 1e3)});
   v.field("run_match_margin", o.run_match_margin,
           {.unit = "",
            .doc = "When they disagree, the run's pairs are kept only when the plan-match check "

@@ -433,6 +433,38 @@ std::string agreement_paragraph(const json& a) {
       format_ratio(maps_scale), format_percent(relative));
 }
 
+/// What the bias every pair shares, added to every model's std_m, was measured from.
+std::string shared_bias_paragraph(const json& b) {
+  const json& from = json_at(b, {"from"});
+  const double faces = number_or(json_at(b, {"faces_m"}), 0.0);
+  if (!from.is_string() || (from == json("none") && !(faces > 0.0)))
+    return {};
+  const std::string f = from.get<std::string>();
+  std::vector<std::string> parts;
+  if (f == "agreement") {
+    parts.push_back(format_metres(json_at(b, {"sources_m"})) +
+                    " from where the run's pairs and the maps' alignment lie apart (averaged "
+                    "over the pairs of each place)");
+  } else if (f == "maps") {
+    parts.push_back(format_metres(json_at(b, {"sources_m"})) +
+                    " from the maps' bent map: its scale spread over the pairs' extent");
+  } else if (f == "option") {
+    parts.push_back("set by the options (mapping.uncertainty.shared_std)");
+  }
+  if (faces > 0.0) {
+    parts.push_back(format_metres(json(faces)) +
+                    " for the outer walls' faces off the drawn strokes, which neither source "
+                    "took out");
+  }
+  std::string listed;
+  for (std::size_t i = 0; i < parts.size(); ++i)
+    listed += (i == 0 ? "" : i + 1 == parts.size() ? " and " : ", ") + parts[i];
+  return fmt::format(
+      "<p>Every model's std_m includes a bias all pairs share, which their cross-validation "
+      "cannot see: <b>{}</b>: {}.</p>\n",
+      format_metres(json_at(b, {"std_m"})), listed);
+}
+
 /// The maps' pairs among the pairs: those that filled where the run did not reach, or all of
 /// them under --pairs-from both.
 json maps_pairs_added(const ReportContext& c) {
@@ -478,6 +510,7 @@ std::string pairs_section(const ReportContext& c) {
   body += "</p>\n";
   body += wall_slide_paragraph(json_at(pairs, {"wall_slide"}));
   body += agreement_paragraph(json_at(c.metrics(), {"sources", "agreement"}));
+  body += shared_bias_paragraph(json_at(c.metrics(), {"shared_bias"}));
   const json& rejected = json_at(pairs, {"rejected"});
   if (rejected.is_object() && !rejected.empty()) {
     double total = number_or(json_at(pairs, {"count"}), 0.0);

@@ -21,11 +21,23 @@ void validate(const ErrorModelOptions& options, const char* prefix) {
                  options.local_radius, "in [0, 1000] metres");
   require_option(options.local_prior > 0.0 && options.local_prior <= 1e6, p + "local_prior",
                  options.local_prior, "in (0, 1e6]");
+  require_option(options.shared_std >= 0.0 && options.shared_std <= 1e3, p + "shared_std",
+                 options.shared_std, "in [0, 1000] metres");
 }
 
+namespace {
+
+/// sqrt(factor (s0^2 + (g d)^2) + b^2).
+double combined_std(const ErrorModel& m, double nearest_m, double factor) {
+  const double spread = m.growth * nearest_m;
+  return std::sqrt(factor * (m.base_std_m * m.base_std_m + spread * spread) +
+                   m.shared_std_m * m.shared_std_m);
+}
+
+}  // namespace
+
 double ErrorModel::std_at(double nearest_m) const {
-  const double spread = growth * nearest_m;
-  return std::sqrt(base_std_m * base_std_m + spread * spread);
+  return combined_std(*this, nearest_m, 1.0);
 }
 
 double ErrorModel::local_factor(const Eigen::Vector2d& p) const {
@@ -43,7 +55,7 @@ double ErrorModel::local_factor(const Eigen::Vector2d& p) const {
 }
 
 double ErrorModel::std_at(const Eigen::Vector2d& p, double nearest_m) const {
-  return std_at(nearest_m) * std::sqrt(local_factor(p));
+  return combined_std(*this, nearest_m, local_factor(p));
 }
 
 void ErrorModel::index_local_points() {
@@ -159,6 +171,7 @@ std::optional<ErrorModel> fit_error_model(std::span<const HeldOutResidual> given
   const double scale = levelled ? *levelled : std::sqrt(options.variance_scale);
   model.base_std_m = scale * s0;
   model.growth = scale * g;
+  model.shared_std_m = options.shared_std;
   model.residuals = residuals.size();
   model.max_nearest_m = max_nearest;
   return model;

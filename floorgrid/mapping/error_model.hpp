@@ -34,20 +34,26 @@ struct ErrorModelOptions {
   double local_radius = 1.0;
   /// Pseudo-count of the global fit in that local average (more: closer to the global fit).
   double local_prior = 1.0;
+  /// Metres: a bias every pair shares, which no cross-validation over the pairs can see (a plan
+  /// scale off by a fraction of a percent, a plan filter pulled along a corridor, wall faces
+  /// against the drawn strokes), added to every std_m in quadrature (0: none). align sets it
+  /// from the two pair sources' disagreement (align.sources.shared_bias).
+  double shared_std = 0.0;
 };
 
 /// Checks `options`; throws InputError naming `<prefix><field>`.
 void validate(const ErrorModelOptions& options, const char* prefix = "mapping.uncertainty.");
 
 /// A mapping model's predictive error at a plan point p whose nearest reference pair is d
-/// metres away: var(p) = f(p) (s0^2 + (g d)^2), the variance of the 2D error vector (E|e|^2,
+/// metres away: var(p) = f(p) (s0^2 + (g d)^2) + b^2, the variance of the 2D error vector (E|e|^2,
 /// both axes together). std_m = sqrt(var) is the root mean square length of the error: for an
 /// isotropic Gaussian error |e| <= std_m holds 63% of the time and |e| <= 2 std_m 98%.
 /// s0 carries what no posterior over the pairs sees (pair errors correlated along a scan and a
 /// wall, the model's misfit), g the growth away from the pairs, both fitted by maximum
 /// likelihood on spatially blocked cross-validation residuals; f(p) is the local misfit: the
 /// held-out errors near p over what s0 and g expect of them, a Gaussian-weighted mean shrunk
-/// towards 1 (where the model errs more than elsewhere, its std is larger there).
+/// towards 1 (where the model errs more than elsewhere, its std is larger there). b is a bias
+/// the pairs share (ErrorModelOptions::shared_std), the same everywhere.
 struct ErrorModel {
   double base_std_m = 0.0;      ///< s0: metres, at a pair
   double growth = 0.0;          ///< g: metres of std per metre from the nearest pair
@@ -55,11 +61,12 @@ struct ErrorModel {
   double max_nearest_m = 0.0;   ///< the farthest held-out pair from its training pairs, metres
   double local_radius_m = 0.0;  ///< the local part's radius (0: none)
   double local_prior = 1.0;     ///< the global fit's pseudo-count in the local mean
+  double shared_std_m = 0.0;    ///< b: metres, the pairs' shared bias
   /// The held-out pairs' plan points and their squared error over s0^2 + (g d)^2.
   Eigen::Matrix2Xd local_points;
   Eigen::VectorXd local_ratios;  ///< one per local point, >= 0
 
-  /// std_m at `nearest_m` metres from the nearest pair, without the local part.
+  /// std_m at `nearest_m` metres from the nearest pair, without the local part (b included).
   double std_at(double nearest_m) const;
   /// std_m at `point_in_plan`, `nearest_m` metres from the nearest pair.
   double std_at(const Eigen::Vector2d& point_in_plan, double nearest_m) const;

@@ -220,6 +220,8 @@ ErrorModel error_model_of(const Value& u, const std::string& where) {
   model.residuals = summary_count(u, "residuals", where, p);
   if (const Value* reach = optional_member(u, "max_nearest_m"))
     model.max_nearest_m = number(*reach, where, p + "max_nearest_m", 0.0, kMaxCoordinate);
+  if (const Value* shared = optional_member(u, "shared_std_m"))
+    model.shared_std_m = number(*shared, where, p + "shared_std_m", 0.0, kMaxCoordinate);
   if (const Value* local = optional_member(u, "local")) {
     const std::string l = p + "local.";
     model.local_radius_m =
@@ -314,8 +316,9 @@ Value PointMapping::to_model_file() const {
   if (error_model_) {
     file["uncertainty"] = {
         {"std_m",
-         "sqrt(f * (base_std_m^2 + (growth * d)^2)), d: metres from the nearest pair, "
-         "f: the local factor (1 without local)"},
+         "sqrt(f * (base_std_m^2 + (growth * d)^2) + shared_std_m^2), d: metres from the "
+         "nearest pair, f: the local factor (1 without local), shared_std_m: a bias all pairs "
+         "share (0 without)"},
         {"meaning",
          "root mean square length of the 2D error: |error| <= std_m about 63%, "
          "<= 2 std_m about 95% of points"},
@@ -323,7 +326,8 @@ Value PointMapping::to_model_file() const {
         {"base_std_m", error_model_->base_std_m},
         {"growth", error_model_->growth},
         {"residuals", error_model_->residuals},
-        {"max_nearest_m", error_model_->max_nearest_m}};
+        {"max_nearest_m", error_model_->max_nearest_m},
+        {"shared_std_m", error_model_->shared_std_m}};
     if (error_model_->local_radius_m > 0.0) {
       file["uncertainty"]["local"] = {
           {"factor",

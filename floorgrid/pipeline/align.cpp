@@ -26,12 +26,48 @@ double seconds_since(Clock::time_point start) {
 
 /// Every model fitted to the pairs and judged against the truth and against the gridmap's
 /// walls; the model `auto` chose.
+// The bias the pairs share (PairSourceOptions::shared_bias), world metres.
+SharedBias measure_shared_bias(const AlignmentOptions& options, const Alignment& a) {
+  SharedBias b;
+  const ReferencePairs& pairs = a.localization.pairs;
+  if (options.sources.shared_bias) {
+    if (a.pairs_from != PairSource::maps && a.sources && a.sources->compared && a.sources->agree) {
+      b.sources_m = a.sources->disagreement_local_median_m;
+      b.from = "agreement";
+    } else if (a.pairs_from == PairSource::maps && a.maps && pairs.size() > 0) {
+      b.sources_m = a.maps->scale.relative_std * radius_of_gyration(pairs.points_in_grid);
+      b.from = "maps";
+    }
+    // The faces neither source took out: the maps' fit did not use them, and the run's pairs
+    // (when used) were not refitted with the walls' surface shift.
+    const bool run_took_them_out =
+        a.pairs_from != PairSource::maps && a.localization.plan_scale_at_drawn_walls > 0.0;
+    if (a.maps && !a.maps->faces.fitted && !run_took_them_out) {
+      const double scale = a.maps->registration.best.transform.scale;
+      const double outer = scale > 0.0 ? a.maps->faces.exterior_offset / scale : 0.0;
+      if (std::isfinite(outer) && outer > 0.0 && outer <= a.maps->options.faces.max_offset)
+        b.faces_m = outer;
+    }
+  }
+  b.std_m = std::hypot(b.sources_m, b.faces_m);
+  const double floor = options.models.mapping.uncertainty.shared_std;
+  if (floor > b.std_m) {
+    b = {};
+    b.std_m = floor;
+    b.from = "option";
+  }
+  return b;
+}
+
 void fit_and_judge_models(const AlignmentInputs& in, const AlignmentOptions& options, Alignment& a,
                           const AlignmentProgressCallback& progress) {
   const ReferencePairs& pairs = a.localization.pairs;
+  a.shared_bias = measure_shared_bias(options, a);
+  ModelComparisonOptions models = options.models;
+  models.mapping.uncertainty.shared_std = a.shared_bias.std_m;
   const auto fit_start = Clock::now();
   std::vector<ModelReport> reports = compare_models(
-      pairs, a.domain, a.truth, a.pair_noise, options.models,
+      pairs, a.domain, a.truth, a.pair_noise, models,
       [&](const std::string& model, std::size_t done, std::size_t total) {
         if (progress)
           progress({"fit", model, done, total});

@@ -89,6 +89,23 @@ struct AlignmentProgress {
   std::size_t total = 0;
 };
 
+/// A bias every pair shares, which no cross-validation over them sees (PairSourceOptions::
+/// shared_bias): the root sum of squares of its parts, world metres.
+struct SharedBias {
+  double std_m = 0.0;  ///< what every model's std_m carries
+  /// What measured the first part: "agreement" (the run's pairs against the maps' alignment,
+  /// PairSourceCheck::disagreement_local_median_m), "maps" (the maps' pairs are used: their bent
+  /// map's scale spread over the pairs' radius of gyration), "option" (the options'
+  /// mapping.uncertainty.shared_std was larger than the whole) or "none".
+  std::string from = "none";
+  double sources_m = 0.0;  ///< that part
+  /// The second: the outer walls' faces off the drawn strokes (WallFaceFit::exterior_offset,
+  /// world metres) when neither the maps' registration nor the run's scale refit took them
+  /// out. Both sources then meet the laser's faces on the strokes and share the error: the
+  /// building's outline drawn that much wider than the laser sees it.
+  double faces_m = 0.0;
+};
+
 /// What the main job found.
 struct Alignment {
   /// How pairs were made. Its `pairs` are the ones every model is fitted on: slid along their
@@ -119,6 +136,9 @@ struct Alignment {
   std::map<std::string, double> peak_memory_mib;
   /// The pairs' own noise from revisits (pair_noise), taken out of every model's std_m.
   std::optional<PairNoise> pair_noise;
+  /// The bias every pair shares that every model's std_m carries (PairSourceOptions::
+  /// shared_bias).
+  SharedBias shared_bias;
   /// The truth as a function (plan -> grid), when the dataset has one.
   std::optional<GroundTruth> truth;
 };

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <set>
 #include <utility>
 #include <vector>
@@ -26,6 +27,7 @@ void validate(const PairSourceOptions& o, const std::string& prefix) {
   require_option(o.min_converged_share >= 0.0 && o.min_converged_share <= 1.0,
                  prefix + "min_converged_share", o.min_converged_share, "in 0..1");
   positive(o.disagreement_sigmas, "disagreement_sigmas");
+  positive(o.bias_cell, "bias_cell");
   require_option(o.min_disagreement_tolerance >= 0.0 && std::isfinite(o.min_disagreement_tolerance),
                  prefix + "min_disagreement_tolerance", o.min_disagreement_tolerance, ">= 0");
   positive(o.scale_sigmas, "scale_sigmas");
@@ -85,6 +87,13 @@ ReferencePairs pairs_beyond(const ReferencePairs& maps, const Eigen::Matrix2Xd& 
   return out;
 }
 
+double radius_of_gyration(const Eigen::Matrix2Xd& points) {
+  if (points.cols() == 0)
+    return 0.0;
+  const Eigen::Vector2d centre = points.rowwise().mean();
+  return std::sqrt((points.colwise() - centre).colwise().squaredNorm().mean());
+}
+
 namespace {
 
 // The run judged on its own: it made pairs, they pass the plan-match check, and they come from
@@ -132,23 +141,38 @@ void judge_run(const RunPairsSummary& run, const OccupancyGrid& gridmap, const P
 void compare_with_maps(const RunPairsSummary& run, const MapAlignment& maps,
                        const PairSourceOptions& o, PairSourceCheck& c) {
   const ReferencePairs& pairs = *run.pairs;
-  const Eigen::Vector2d centre = pairs.points_in_grid.rowwise().mean();
-  const double gyration =
-      std::sqrt((pairs.points_in_grid.colwise() - centre).colwise().squaredNorm().mean());
-  const double placed = maps.scale.relative_std * gyration;
+  const double placed = maps.scale.relative_std * radius_of_gyration(pairs.points_in_grid);
   c.disagreement_tolerance_m =
       std::max(o.min_disagreement_tolerance,
                o.disagreement_sigmas * std::sqrt(placed * placed + run.noise_m * run.noise_m));
   std::vector<double> distances;
+  // Per cell of bias_cell metres: the sum of the disagreement vectors and their count.
+  std::map<std::pair<long, long>, std::pair<Eigen::Vector2d, int>> cells;
+  std::vector<std::pair<long, long>> cell_of;
   // At most about 20,000 pairs, evenly: plenty for a median.
   const Eigen::Index step = std::max<Eigen::Index>(1, pairs.size() / 20000);
   for (Eigen::Index i = 0; i < pairs.size(); i += step) {
-    const Eigen::Vector2d mapped = maps.warp->apply(Eigen::Vector2d(pairs.points_in_grid.col(i)));
-    distances.push_back((mapped - pairs.points_in_plan.col(i)).norm() * run.plan_scale);
+    const Eigen::Vector2d grid = pairs.points_in_grid.col(i);
+    const Eigen::Vector2d mapped = maps.warp->apply(grid);
+    const Eigen::Vector2d apart = (mapped - pairs.points_in_plan.col(i)) * run.plan_scale;
+    distances.push_back(apart.norm());
+    const std::pair<long, long> cell{std::lround(std::floor(grid.x() / o.bias_cell)),
+                                     std::lround(std::floor(grid.y() / o.bias_cell))};
+    auto [at, added] = cells.try_emplace(cell, Eigen::Vector2d::Zero(), 0);
+    at->second.first += apart;
+    ++at->second.second;
+    cell_of.push_back(cell);
+  }
+  std::vector<double> shared;
+  shared.reserve(cell_of.size());
+  for (const std::pair<long, long>& cell : cell_of) {
+    const auto& [sum, count] = cells.at(cell);
+    shared.push_back(sum.norm() / count);
   }
   c.compared = true;
   c.disagreement_median_m = median(distances);
   c.disagreement_p90_m = quantile(distances, 0.9);
+  c.disagreement_local_median_m = median(shared);
   c.run_scale = run.plan_scale;
   c.maps_scale = maps.scale.scale;
   c.run_scale_at_drawn_walls = run.scale_at_drawn_walls;

@@ -54,6 +54,21 @@ struct PairSourceOptions {
   /// came near (rooms it did not enter, a drawing's corner it saw only from afar), where the
   /// models would otherwise extrapolate; near the run's they would only dilute them (0: none).
   double fill_radius = 2.0;
+  /// Every model's std_m carries a bias the pairs share, which no cross-validation over them
+  /// can see (ErrorModelOptions::shared_std; the larger of it and this): with the run's pairs
+  /// and the maps' alignment agreeing, how far apart they lie (disagreement_local_median_m);
+  /// with the maps' pairs alone, the bent map's scale spread over the pairs' radius of gyration
+  /// (what the maps state of their own placement); and the outer walls' faces off the drawn
+  /// strokes when neither source took them out (align's SharedBias). On the drawings of
+  /// bench/real_matrix.sh, seeds 1-6, the chosen model's bands held the truth errors (2-sigma
+  /// >= 85%, 1-sigma >= 55%) on 17 of 54 rows without it and 40 with it (README: "What std_m
+  /// includes").
+  bool shared_bias = true;
+  /// World metres: the run's pairs' distances to the maps' alignment are averaged, as vectors,
+  /// over square cells this wide (gridmap frame) before their median is the shared bias: a
+  /// pair's own noise, which the models average out, leaves the mean; what every pair of a
+  /// place shares stays (PairSourceCheck::disagreement_local_median_m).
+  double bias_cell = 2.0;
 };
 
 /// Checks `options`; throws InputError naming `<prefix><field>`.
@@ -77,8 +92,11 @@ struct PairSourceCheck {
   std::string maps_failure;
   // The two against each other (when both were accepted).
   bool compared = false;
-  double disagreement_median_m = 0.0;     ///< world metres, over the run's pairs
-  double disagreement_p90_m = 0.0;        ///< world metres
+  double disagreement_median_m = 0.0;  ///< world metres, over the run's pairs
+  double disagreement_p90_m = 0.0;     ///< world metres
+  /// World metres: the median over the run's pairs of the mean disagreement vector of the pairs
+  /// in their cell (PairSourceOptions::bias_cell): what the pairs of a place share.
+  double disagreement_local_median_m = 0.0;
   double disagreement_tolerance_m = 0.0;  ///< how far the median may be, world metres
   double run_scale = 0.0;                 ///< the run's plan scale (world metres per plan metre)
   /// The run's scale fitted on the drawn walls (RunPairsSummary::scale_at_drawn_walls; 0 when
@@ -95,6 +113,9 @@ struct PairSourceCheck {
   /// Why the run's pairs were not used, when the maps' were ("" otherwise).
   std::string fallback;
 };
+
+/// The root mean square distance of `points` from their mean (0 without points).
+double radius_of_gyration(const Eigen::Matrix2Xd& points);
 
 /// The share of the gridmap's occupied cells within `radius` metres of a point of
 /// `points_in_grid`.

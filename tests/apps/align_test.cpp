@@ -107,10 +107,17 @@ TEST(AlignCommand, OfficeGivesAccuratePairsAndModelsAndEveryContractKey) {
       EXPECT_EQ(j["cv_kind"], "blocked") << model;
       EXPECT_GT(j["cv_block_m"].get<double>(), 0.0) << model;
     }
+    // Every model's std_m carries the bias the pairs share, as measured once for all.
+    EXPECT_EQ(j["uncertainty"]["shared_std_m"], m["shared_bias"]["std_m"]) << model;
     EXPECT_TRUE(fs::exists(dir / "out" / ("model-" + std::string(model) + ".json"))) << model;
     EXPECT_TRUE(fs::exists(dir / "out" / "overlays" / ("overlay-" + std::string(model) + ".png")));
   }
   EXPECT_TRUE(fs::exists(dir / "out" / "model.json"));
+  // That bias: the run's pairs and the maps' alignment agree, so how far apart they lie.
+  ASSERT_EQ(m["sources"]["agreement"]["agree"], true);
+  EXPECT_EQ(m["shared_bias"]["from"], "agreement");
+  EXPECT_EQ(m["shared_bias"]["std_m"], m["sources"]["agreement"]["median_m"]);
+  EXPECT_GT(m["shared_bias"]["std_m"].get<double>(), 0.0);
   // Each filter's track, a row per scan of the log.
   std::ifstream scans(dir / "out" / "scans.csv");
   std::string header;

@@ -291,6 +291,22 @@ TEST(ReportHtml, ARunFilledByTheMapsCountsOnlyTheFillAndShowsTheAgreement) {
   const std::string refitted = test::read_file(io::write_report_html(dir.path()));
   EXPECT_NE(refitted.find(io::format_ratio(json(1.0111)) + " without the walls' faces"),
             std::string::npos);
+  // The bias in every std_m, and what measured it; nothing said of none.
+  EXPECT_EQ(refitted.find("a bias all pairs share"), std::string::npos);
+  m["shared_bias"] = {
+      {"std_m", 0.13}, {"from", "agreement"}, {"sources_m", 0.12}, {"faces_m", 0.05}};
+  write_folder(dir.path(), m, true);
+  const std::string biased = test::read_file(io::write_report_html(dir.path()));
+  EXPECT_NE(biased.find("a bias all pairs share, which their cross-validation cannot see: <b>" +
+                        io::format_metres(0.13) + "</b>: " + io::format_metres(0.12) +
+                        " from where the run's pairs and the maps' alignment lie apart"),
+            std::string::npos);
+  EXPECT_NE(biased.find(" and " + io::format_metres(0.05) + " for the outer walls' faces"),
+            std::string::npos);
+  m["shared_bias"] = {{"std_m", 0.0}, {"from", "none"}};
+  write_folder(dir.path(), m, true);
+  EXPECT_EQ(test::read_file(io::write_report_html(dir.path())).find("a bias all pairs share"),
+            std::string::npos);
 }
 
 TEST(ReportHtml, TheMapsStandingInForAFailedRunSaySoAndWhy) {

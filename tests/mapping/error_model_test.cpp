@@ -146,11 +146,14 @@ ReferencePairs scan_pairs(const test::Truth& truth, int per_scan, double correla
 }
 
 /// `name` fitted on `pairs` with its error model as align fits it: its shape from a 5-fold
-/// blocked cross-validation, its level from runs folds less the pairs' noise.
+/// blocked cross-validation, its level from runs folds less the pairs' noise, and a bias the
+/// pairs share of `shared_std` metres.
 std::unique_ptr<PointMapping> fit_with_error_model(const std::string& name,
-                                                   const ReferencePairs& pairs) {
+                                                   const ReferencePairs& pairs,
+                                                   double shared_std = 0.0) {
   MappingOptions options;
   options.model = name;
+  options.uncertainty.shared_std = shared_std;
   auto model = make_mapping(options);
   model->fit(pairs);
   model->set_error_model(fit_model_error(options, pairs, {}, pair_noise(pairs)));
@@ -211,6 +214,58 @@ TEST(ErrorModel, BandsHoldTheTrueErrorsOfAWarpFittedOnScanCorrelatedPairs) {
     // Not absurdly wide: the pairs' own scale (0.03 m correlated per axis) sets it.
     EXPECT_LT(c->median_std_m, 0.25) << name;
   }
+}
+
+TEST(ErrorModel, ABiasEveryPairSharesIsInEveryStdAndItsBandsThenHoldTheTrueErrors) {
+  const test::Truth truth = wavy();
+  // Every grid point 0.1 m off where the truth puts it (a plan scale or a plan filter off the
+  // same way everywhere): no cross-validation over the pairs can see it.
+  const Eigen::Vector2d bias(0.08, -0.06);
+  ReferencePairs pairs = scan_pairs(truth, 8, 0.03, 0.01, test::kWidth, 21);
+  pairs.points_in_grid.colwise() += bias;
+  const Eigen::Matrix2Xd points = scan_pairs(truth, 2, 0.0, 0.0, test::kWidth, 99).points_in_plan;
+  const auto unaware = fit_with_error_model("tps", pairs);
+  const auto aware = fit_with_error_model("tps", pairs, bias.norm());
+  ASSERT_TRUE(unaware->error_model() && aware->error_model());
+  EXPECT_EQ(aware->error_model()->shared_std_m, bias.norm());
+  std::vector<double> errors;
+  for (Eigen::Index i = 0; i < points.cols(); ++i)
+    errors.push_back((unaware->forward(points.col(i)) - truth(points.col(i))).norm());
+  const std::optional<Calibration> before = calibration(*unaware, points, errors);
+  const std::optional<Calibration> after = calibration(*aware, points, errors);
+  ASSERT_TRUE(before && after);
+  EXPECT_LT(before->within_2sigma, 0.5) << "median std " << before->median_std_m;
+  // The errors are the bias give or take the pairs' noise, and std_m about the bias: the
+  // 2-sigma band holds them all, the 1-sigma band about half (measured 0.48).
+  EXPECT_GE(after->within_2sigma, 0.95) << "median std " << after->median_std_m;
+  EXPECT_GE(after->within_1sigma, 0.3) << "median std " << after->median_std_m;
+  // Added in quadrature, everywhere, the local part and the growth left as they were.
+  for (const Eigen::Vector2d& p : {Eigen::Vector2d(5.0, 5.0), Eigen::Vector2d(30.0, 12.0)}) {
+    const MappedPoint a = unaware->map_forward(p), b = aware->map_forward(p);
+    ASSERT_TRUE(a.std_m && b.std_m);
+    EXPECT_NEAR(*b.std_m, std::hypot(*a.std_m, bias.norm()), 1e-12);
+  }
+  // It survives the model file; a file of an earlier build has none; a negative one is refused.
+  MappingOptions options;
+  const Value file = aware->to_model_file();
+  const auto loaded = load_mapping(file, "model.json", options);
+  ASSERT_TRUE(loaded->error_model().has_value());
+  EXPECT_EQ(loaded->error_model()->shared_std_m, bias.norm());
+  EXPECT_NEAR(*loaded->map_forward({5.0, 5.0}).std_m, *aware->map_forward({5.0, 5.0}).std_m, 1e-12);
+  Value earlier = file;
+  Value uncertainty = Value::object();
+  for (const auto& [key, value] : file.find("uncertainty")->members())
+    if (key != "shared_std_m")
+      uncertainty[key] = value;
+  earlier["uncertainty"] = uncertainty;
+  EXPECT_EQ(load_mapping(earlier, "old.json", options)->error_model()->shared_std_m, 0.0);
+  Value damaged = file;
+  damaged["uncertainty"]["shared_std_m"] = -0.1;
+  test::expect_input_error([&] { load_mapping(damaged, "model.json", options); },
+                           {"model.json", "uncertainty.shared_std_m"});
+  ErrorModelOptions bad;
+  bad.shared_std = -1.0;
+  test::expect_input_error([&] { validate(bad); }, {"mapping.uncertainty.shared_std"});
 }
 
 TEST(ErrorModel, StdGrowsAwayFromThePairsAndTheFlagFollowsTheMaximalError) {

@@ -83,6 +83,31 @@ const auto judge_maps_at = [](double score) {
   return [score](const ReferencePairs&) { return match_scoring(score); };
 };
 
+TEST(PairSources, WhatThePairsOfAPlaceShareIsTheirMeanDisagreementNotTheirNoise) {
+  const OccupancyGrid map = box_map();
+  const MapAlignment maps = maps_of(0.5);
+  // Every run pair 0.1 m (world) off the maps' along x, and half of them 0.3 m further each way
+  // in y, alternately: each pair lies about 0.32 m from the maps, the places' means 0.1 m.
+  ReferencePairs pairs = wall_pairs(0.0, 20.0, 0.5);
+  for (Eigen::Index i = 0; i < pairs.size(); ++i) {
+    const double y = (i / 2) % 2 == 0 ? 0.3 : -0.3;
+    pairs.points_in_plan.col(i) += 0.5 * Eigen::Vector2d(0.1, y);
+  }
+  const PairSourceCheck c =
+      check_pair_sources(run_of(pairs, 2.0, 500), &maps, map, {}, judge_maps_at(0.9));
+  ASSERT_TRUE(c.compared);
+  EXPECT_NEAR(c.disagreement_median_m, std::hypot(0.1, 0.3), 1e-9);
+  EXPECT_NEAR(c.disagreement_local_median_m, 0.1, 1e-9);
+  // Cells as small as a pair apart keep each pair alone: the mean is the pair.
+  PairSourceOptions fine;
+  fine.bias_cell = 0.01;
+  EXPECT_NEAR(check_pair_sources(run_of(pairs, 2.0, 500), &maps, map, fine, judge_maps_at(0.9))
+                  .disagreement_local_median_m,
+              std::hypot(0.1, 0.3), 1e-9);
+  fine.bias_cell = 0.0;
+  test::expect_input_error([&] { validate(fine); }, {"align.sources.bias_cell"});
+}
+
 TEST(PairSources, CoverageIsTheShareOfWallsNearAPair) {
   const OccupancyGrid map = box_map();
   // Pairs along the two long walls cover them and the end walls' 2 m next to them: 956 of the
