@@ -81,7 +81,16 @@ void add_fit_command(CLI::App& root) {
   cmd->add_option("--extrapolation", args->options.common.extrapolation_distance,
                   "metres from the nearest pair beyond which `map` flags a point extrapolated")
       ->capture_default_str();
+  cmd->add_option("--shared-std", args->options.uncertainty.shared_std,
+                  "metres: a bias all the pairs share, which their cross-validation cannot see "
+                  "(how far the drawing or the pairs may be off as a whole), added to std_m in "
+                  "quadrature")
+      ->capture_default_str();
   cmd->callback([args] {
+    const double shared = args->options.uncertainty.shared_std;
+    if (!(shared >= 0.0 && shared <= 1e3))
+      throw InputError(fmt::format("must be in [0, 1000] metres (got {})", shared), {}, 0,
+                       "--shared-std");
     if (args->cv == 1)
       throw InputError("must be 0 or at least 2", {}, 0, "--cv");
     if (args->budget < 3 || args->budget > 10'000'000)
@@ -151,10 +160,13 @@ void add_fit_command(CLI::App& root) {
                  args->cv >= 2 ? args->cv : args->options.auto_select.cv.folds);
     }
     if (const std::optional<ErrorModel>& u = model->error_model()) {
+      const std::string bias_term =
+          u->shared_std_m > 0.0 ? fmt::format(" + {:.4f}^2", u->shared_std_m) : std::string();
       fmt::print(
-          "std_m     sqrt({:.4f}^2 + ({:.4f} d)^2) m, d: metres from the nearest pair ({} "
-          "held-out pairs)\n",
-          u->base_std_m, u->growth, u->residuals);
+          "std_m     sqrt({:.4f}^2 + ({:.4f} d)^2{}) m, d: metres from the nearest pair ({} "
+          "held-out pairs){}\n",
+          u->base_std_m, u->growth, bias_term, u->residuals,
+          bias_term.empty() ? "" : "; the last term a bias all pairs share (--shared-std)");
     } else {
       fmt::print("std_m     none ({})\n", args->cv >= 2 && cv.kind == CrossValidationKind::blocked
                                               ? "too few held-out pairs"

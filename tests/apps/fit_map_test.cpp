@@ -104,6 +104,36 @@ TEST(FitAndMapCommands, FitThenMapPointsPosesAndCsv) {
   EXPECT_EQ(first.substr(first.rfind(',') + 1), "ok");
   EXPECT_EQ(second.substr(second.rfind(',') + 1), "outside_hull");
 
+  // A bias the pairs share, given: in the model file and in every std_m, in quadrature.
+  const auto biased =
+      run_floorgrid("fit --pairs " + quoted(dir / "pairs.csv") +
+                    " --model gt --shared-std 0.05 --out " + quoted(dir / "biased.json"));
+  ASSERT_EQ(biased.status, 0) << biased.err;
+  EXPECT_NE(biased.out.find(" + 0.0500^2) m"), std::string::npos) << biased.out;
+  EXPECT_EQ(nlohmann::json::parse(read_file(dir / "biased.json"))["uncertainty"]["shared_std_m"],
+            0.05);
+  const auto std_of = [&](const fs::path& file) {
+    const auto mapped = run_floorgrid("map --model " + quoted(file) + " --points " +
+                                      quoted(dir / "in.csv") + " --out " + quoted(dir / "s.csv"));
+    EXPECT_EQ(mapped.status, 0) << mapped.err;
+    std::istringstream rows(read_file(dir / "s.csv"));
+    std::string row;
+    std::getline(rows, row);
+    std::getline(rows, row);
+    double values[4] = {};
+    EXPECT_EQ(
+        std::sscanf(row.c_str(), "%lf,%lf,%lf,%lf", &values[0], &values[1], &values[2], &values[3]),
+        4)
+        << row;
+    return values[3];
+  };
+  const double plain = std_of(dir / "model.json");
+  EXPECT_NEAR(std_of(dir / "biased.json"), std::hypot(plain, 0.05), 1e-6);
+  EXPECT_NE(run_floorgrid("fit --pairs " + quoted(dir / "pairs.csv") + " --shared-std -1 --out " +
+                          quoted(dir / "bad.json"))
+                .err.find("--shared-std"),
+            std::string::npos);
+
   const auto back = run_floorgrid("map --inverse --model " + quoted(dir / "model.json") + " " +
                                   std::to_string(g.x()) + "," + std::to_string(g.y()));
   ASSERT_EQ(back.status, 0) << back.err;
