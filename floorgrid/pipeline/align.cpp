@@ -38,11 +38,11 @@ SharedBias measure_shared_bias(const AlignmentOptions& options, const Alignment&
       b.sources_m = a.maps->scale.relative_std * radius_of_gyration(pairs.points_in_grid);
       b.from = "maps";
     }
-    // The faces neither source took out: the maps' fit did not use them, and the run's pairs
-    // (when used) were not refitted with the walls' surface shift.
+    // The faces neither source took out: the maps' accepted fit did not use them, and the run's
+    // pairs (when used) were not refitted with the walls' surface shift.
     const bool run_took_them_out =
         a.pairs_from != PairSource::maps && a.localization.plan_scale_at_drawn_walls > 0.0;
-    if (a.maps && !a.maps->faces.fitted && !run_took_them_out) {
+    if (a.maps && a.maps->accepted && !a.maps->faces.fitted && !run_took_them_out) {
       const double scale = a.maps->registration.best.transform.scale;
       const double outer = scale > 0.0 ? a.maps->faces.exterior_offset / scale : 0.0;
       if (std::isfinite(outer) && outer > 0.0 && outer <= a.maps->options.faces.max_offset)
