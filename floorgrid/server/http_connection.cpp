@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 
 namespace floorgrid::server {
@@ -184,6 +185,10 @@ void HttpConnection::close() {
   }
   ::shutdown(socket_, SHUT_RDWR);
   ::close(socket_);
+}
+
+LimitedHttpServer::LimitedHttpServer(const ConnectionLimits& limits) : limits_(limits) {
+  set_keep_alive_timeout(static_cast<time_t>(std::floor(std::max(0.0, limits.idle_timeout_s))));
 }
 
 bool LimitedHttpServer::process_and_close_socket(socket_t socket) {

@@ -77,8 +77,10 @@ class HttpConnection final : public httplib::Stream {
 /// exception while answering drops that connection rather than the process.
 class LimitedHttpServer : public httplib::Server {
  public:
-  /// A server whose connections keep `limits`.
-  explicit LimitedHttpServer(const ConnectionLimits& limits) : limits_(limits) {}
+  /// A server whose connections keep `limits`, and say so: the answers' Keep-Alive header
+  /// gives the idle timeout they keep (whole seconds, rounded down), not cpp-httplib's 5 s. A
+  /// client that believed 5 s reused connections closed after 2 (Node's fetch: "fetch failed").
+  explicit LimitedHttpServer(const ConnectionLimits& limits);
 
  private:
   bool process_and_close_socket(socket_t socket) override;

@@ -7,6 +7,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -417,6 +418,26 @@ TEST_F(ViewerHostileTest, AStreamedAnswerIsTheWholeAnswer) {
   ASSERT_EQ(r->status, 200) << r->body.substr(0, 200);
   EXPECT_EQ(r->get_header_value("Transfer-Encoding"), "chunked");
   EXPECT_EQ(nlohmann::json::parse(r->body), map_points(request, *session_.model(), {}));
+}
+
+TEST_F(ViewerHostileTest, AKeptAliveConnectionStaysOpenAsLongAsTheAnswerSays) {
+  options_.connection.idle_timeout_s = 2.0;
+  start();
+  RawConnection c(port_);
+  ASSERT_TRUE(c.send("GET /api/info HTTP/1.1\r\nHost: x\r\n\r\n"));
+  c.read_all(300ms);
+  ASSERT_EQ(c.status(), 200) << c.head();
+  // What the answer promises: an idle connection stays open this many seconds.
+  const std::size_t at = c.head().find("Keep-Alive: timeout=");
+  ASSERT_NE(at, std::string::npos) << c.head();
+  const int promised = std::atoi(c.head().c_str() + at + 20);
+  EXPECT_GE(promised, 1);
+  EXPECT_LE(promised, 2) << "the connection closes after 2 s idle";
+  // A client that reuses it just within the promise is answered on it.
+  std::this_thread::sleep_for(std::chrono::milliseconds(1000 * promised - 500));
+  ASSERT_TRUE(c.send("GET /api/info HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n"));
+  c.read_all(2s, 1 << 16, "HTTP/1.1 200");
+  EXPECT_EQ(c.count(), 1u) << c.head();
 }
 
 TEST_F(ViewerHostileTest, ABodyOrHeadersTooSlowOrTooLargeEndTheConnection) {
