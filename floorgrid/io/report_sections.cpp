@@ -449,7 +449,7 @@ std::string shared_bias_paragraph(const json& b) {
     parts.push_back(format_metres(json_at(b, {"sources_m"})) +
                     " from the maps' bent map: its scale spread over the pairs' extent");
   } else if (f == "option") {
-    parts.push_back("set by the options (mapping.uncertainty.shared_std)");
+    parts.push_back("set by the options (align.models.mapping.uncertainty.shared_std)");
   }
   if (faces > 0.0) {
     parts.push_back(format_metres(json(faces)) +

@@ -24,9 +24,7 @@ double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-/// Every model fitted to the pairs and judged against the truth and against the gridmap's
-/// walls; the model `auto` chose.
-// The bias the pairs share (PairSourceOptions::shared_bias), world metres.
+/// The bias the pairs share (PairSourceOptions::shared_bias), world metres.
 SharedBias measure_shared_bias(const AlignmentOptions& options, const Alignment& a) {
   SharedBias b;
   const ReferencePairs& pairs = a.localization.pairs;
@@ -59,6 +57,8 @@ SharedBias measure_shared_bias(const AlignmentOptions& options, const Alignment&
   return b;
 }
 
+/// Every model fitted to the pairs and judged against the truth and against the gridmap's
+/// walls; the model `auto` chose.
 void fit_and_judge_models(const AlignmentInputs& in, const AlignmentOptions& options, Alignment& a,
                           const AlignmentProgressCallback& progress) {
   const ReferencePairs& pairs = a.localization.pairs;

@@ -96,7 +96,7 @@ struct SharedBias {
   /// What measured the first part: "agreement" (the run's pairs against the maps' alignment,
   /// PairSourceCheck::disagreement_local_median_m), "maps" (the maps' pairs are used: their bent
   /// map's scale spread over the pairs' radius of gyration), "option" (the options'
-  /// mapping.uncertainty.shared_std was larger than the whole) or "none".
+  /// align.models.mapping.uncertainty.shared_std was larger than the whole) or "none".
   std::string from = "none";
   double sources_m = 0.0;  ///< that part
   /// The second: the outer walls' faces off the drawn strokes (WallFaceFit::exterior_offset,

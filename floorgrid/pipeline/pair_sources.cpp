@@ -158,9 +158,9 @@ void compare_with_maps(const RunPairsSummary& run, const MapAlignment& maps,
     distances.push_back(apart.norm());
     const std::pair<long, long> cell{std::lround(std::floor(grid.x() / o.bias_cell)),
                                      std::lround(std::floor(grid.y() / o.bias_cell))};
-    auto [at, added] = cells.try_emplace(cell, Eigen::Vector2d::Zero(), 0);
-    at->second.first += apart;
-    ++at->second.second;
+    auto& [sum, count] = cells.try_emplace(cell, Eigen::Vector2d::Zero(), 0).first->second;
+    sum += apart;
+    ++count;
     cell_of.push_back(cell);
   }
   std::vector<double> shared;
