@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "floorgrid/core/error.hpp"
 #include "floorgrid/core/statistics.hpp"
 #include "floorgrid/geometry/convex_hull.hpp"
+#include "floorgrid/geometry/transform_estimation.hpp"
 #include "floorgrid/maps/distance_field.hpp"
 
 namespace floorgrid {
@@ -52,6 +54,21 @@ EvaluationDomain hull_domain(const Eigen::Matrix2Xd& samples, const Eigen::Matri
       inside.push_back(i);
   }
   return {"manual_pairs_hull", keep(samples, inside), spacing};
+}
+
+std::optional<double> truth_plan_scale(
+    const EvaluationDomain& domain,
+    const std::function<Eigen::Vector2d(const Eigen::Vector2d&)>& plan_to_grid) {
+  if (domain.points_in_plan.cols() < 2)
+    return std::nullopt;
+  Eigen::Matrix2Xd in_grid(2, domain.points_in_plan.cols());
+  for (Eigen::Index i = 0; i < in_grid.cols(); ++i)
+    in_grid.col(i) = plan_to_grid(domain.points_in_plan.col(i));
+  try {
+    return estimate_transform(domain.points_in_plan, in_grid).scale;
+  } catch (const InputError&) {
+    return std::nullopt;  // all at one place: no similarity
+  }
 }
 
 ErrorStatistics error_statistics(std::vector<double> errors) {

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 
 #include "floorgrid/maps/occupancy_grid.hpp"
@@ -37,6 +38,14 @@ EvaluationDomain hull_domain(const VectorFloorplan& walls,
 /// hull_domain over given wall samples.
 EvaluationDomain hull_domain(const Eigen::Matrix2Xd& wall_samples,
                              const Eigen::Matrix2Xd& pair_points_in_plan, double spacing);
+
+/// The plan scale the truth itself gives over `domain`: the scale of its least-squares
+/// similarity plan -> grid at the domain's points. A bent map has no single scale; this is the
+/// one over the walls where the mapping is judged (nothing for fewer than two points, or all at
+/// one place).
+std::optional<double> truth_plan_scale(
+    const EvaluationDomain& domain,
+    const std::function<Eigen::Vector2d(const Eigen::Vector2d&)>& plan_to_grid);
 
 /// Mean, median and 95th percentile of errors (metres).
 struct ErrorStatistics {

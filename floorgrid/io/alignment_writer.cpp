@@ -279,6 +279,9 @@ json metrics_json(const Alignment& a, const std::string& dataset, const Alignmen
                        {"plan_scale", number(1.0 / m.transform.scale)}};
   }
   j["domain"] = {{"kind", a.domain.kind}, {"points", a.domain.points_in_plan.cols()}};
+  if (a.truth)
+    if (const std::optional<double> scale = truth_plan_scale(a.domain, *a.truth))
+      j["domain"]["truth_plan_scale"] = number(*scale);
   j["models"] = json::object();
   for (const ModelAlignment& m : a.models)
     j["models"][m.report.name] = model_metrics_json(m);

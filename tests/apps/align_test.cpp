@@ -61,6 +61,11 @@ TEST(AlignCommand, OfficeGivesAccuratePairsAndModelsAndEveryContractKey) {
   EXPECT_FALSE(std::filesystem::exists(dir / "out" / "INCOMPLETE.txt"));
   EXPECT_TRUE(std::filesystem::exists(dir / "out" / "metrics.json"));
   EXPECT_GT(m["domain"]["points"].get<int>(), 1000);
+  // The plan scale the truth gives over the domain: the simulated office's own (its gridmap's
+  // drift moves it by 5e-6), not its inverse (1.5% off here). bench/real_matrix.sh judges the
+  // run's estimate against it.
+  EXPECT_NEAR(m["domain"]["truth_plan_scale"].get<double>(), true_plan_scale(dir),
+              0.001 * true_plan_scale(dir));
   // Which dataset was aligned (what `serve` of the folder shows).
   EXPECT_TRUE(std::filesystem::equivalent(m["dataset_path"].get<std::string>(),
                                           dir / "data" / "dataset.yaml"))

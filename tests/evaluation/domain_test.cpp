@@ -4,7 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <cmath>
+#include <vector>
 
 namespace floorgrid {
 namespace {
@@ -50,6 +52,49 @@ TEST(HullDomain, KeepsTheWallSamplesInsideThePairsHull) {
   EXPECT_NEAR(d.points_in_plan.row(0).minCoeff(), -2.0, 0.05 + 1e-9);
   EXPECT_NEAR(d.points_in_plan.row(0).maxCoeff(), 2.0, 0.05 + 1e-9);
   EXPECT_NEAR(static_cast<double>(d.points_in_plan.cols()), 81, 1);
+}
+
+TEST(TruthPlanScale, IsTheScaleOfTheTruthsSimilarityWhereTheDomainLies) {
+  // Wall samples of a 4 m x 3 m room's four walls, every 0.5 m.
+  EvaluationDomain d;
+  std::vector<Eigen::Vector2d> points;
+  for (double t = 0.0; t <= 4.0; t += 0.5) {
+    points.emplace_back(t, 0.0);
+    points.emplace_back(t, 3.0);
+  }
+  for (double t = 0.5; t < 3.0; t += 0.5) {
+    points.emplace_back(0.0, t);
+    points.emplace_back(4.0, t);
+  }
+  d.points_in_plan.resize(2, static_cast<Eigen::Index>(points.size()));
+  for (std::size_t i = 0; i < points.size(); ++i)
+    d.points_in_plan.col(static_cast<Eigen::Index>(i)) = points[i];
+  // A similarity: scale 1.3, turned 0.4 rad, shifted; its scale is the answer exactly.
+  const Eigen::Rotation2Dd turn(0.4);
+  const auto similarity = [&](const Eigen::Vector2d& p) {
+    return Eigen::Vector2d(1.3 * (turn * p) + Eigen::Vector2d(-7.0, 2.5));
+  };
+  ASSERT_TRUE(truth_plan_scale(d, similarity).has_value());
+  EXPECT_NEAR(*truth_plan_scale(d, similarity), 1.3, 1e-12);
+  // A bent truth: 1.1 over the room (x < 6), 0.9 beyond it. Judged where the room is, the
+  // scale is the room's, not the 1.0 a fit over the whole drawing would average to.
+  const auto bent = [](const Eigen::Vector2d& p) {
+    return Eigen::Vector2d(p.x() < 6.0 ? 1.1 * p
+                                       : Eigen::Vector2d(6.6 + 0.9 * (p.x() - 6.0), 0.9 * p.y()));
+  };
+  EXPECT_NEAR(*truth_plan_scale(d, bent), 1.1, 1e-12);
+  // One wall along a line still gives it; one point, or points all at one place, do not.
+  EvaluationDomain line;
+  line.points_in_plan.resize(2, 5);
+  line.points_in_plan << 0, 1, 2, 3, 4,  //
+      0, 0, 0, 0, 0;
+  EXPECT_NEAR(*truth_plan_scale(line, similarity), 1.3, 1e-12);
+  EvaluationDomain one;
+  one.points_in_plan = Eigen::Matrix2Xd::Zero(2, 1);
+  EXPECT_FALSE(truth_plan_scale(one, similarity).has_value());
+  EvaluationDomain same;
+  same.points_in_plan = Eigen::Matrix2Xd::Ones(2, 4);
+  EXPECT_FALSE(truth_plan_scale(same, similarity).has_value());
 }
 
 TEST(ErrorStatistics, MatchesNumpy) {
