@@ -1103,6 +1103,11 @@ void visit(OptionVisitor& v, ScaleRefitOptions& o) {
            .doc = "Refit also a scale the maps' registration gave, where the surface shift is "
                   "fitted",
            .choices = {}});
+  v.field("raise_registered_scale", o.raise_registered_scale,
+          {.unit = "",
+           .doc = "Where the shift is not used and the maps' registration gave the scale without "
+                  "meeting the outer walls' faces, use the scale refitted alone when it is higher",
+           .choices = {}});
   v.field("min_shift", o.min_shift,
           {.unit = "m",
            .doc = "With auto, the fitted shift is used only where it is at least this large "

@@ -31,7 +31,8 @@ bool usable_for_pairs(const ScanRecord& r, bool refine) {
 ScaleRefit refit_plan_scale(DualLocalization& result, const RobotLog& log,
                             const WallField& plan_walls, const FilterRunnerOptions& plan_runner,
                             const ScaleRefitOptions& options, double scale, bool fit_shift,
-                            double min_shift, bool registered, const GridRayCaster* plan_caster) {
+                            double min_shift, bool registered, bool at_faces,
+                            const GridRayCaster* plan_caster) {
   // Each scan reduced to its beams consistent with the plan at its pose as it is prepared: a
   // long run's full observations and their reduced copies are never held at once.
   std::vector<ScanObservation> points;
@@ -71,13 +72,27 @@ ScaleRefit refit_plan_scale(DualLocalization& result, const RobotLog& log,
         "the plan's walls were met {:.3f} m (+-{:.3f} m) nearer the laser than drawn{}",
         result.plan_surface_shift, result.plan_surface_shift_std,
         shift_used ? ", fitted with the scale" : ": on their lines, so the scale is fitted alone"));
-    if (!shift_used && registered) {
+    const bool may_raise = registered && !at_faces && options.raise_registered_scale;
+    if (!shift_used && registered && !may_raise) {
       // The walls' faces lie on the drawn lines: a registered scale is kept with the scans'
-      // poses (the registration is not biased here).
+      // poses (a registration that met the outer walls' faces is not biased by them).
       result.notes.push_back(kKeptRegisteredScale);
       return {scale};
     }
     ScaleFit alone = fit_with(false);
+    if (!shift_used && registered) {
+      // ... but one that did not lies low, and a refit above it says by how much; a refit
+      // lower still is the walls' thickness biasing the refit too.
+      if (!(alone.scale > scale)) {
+        result.notes.push_back(kKeptRegisteredScale);
+        return {scale};
+      }
+      result.notes.push_back(fmt::format(
+          "the scale refitted alone, {:.4f}, lies above the maps' registration's {:.4f}, which "
+          "did not meet the outer walls' faces (a drawn outline registered on the laser's comes "
+          "out small): the refit is used",
+          alone.scale, scale));
+    }
     if (shift_used) {
       refit.scale_at_drawn_walls = alone.scale;
       result.notes.push_back(
@@ -145,7 +160,8 @@ void track_plan_and_refit_scale(const DualMaps& maps, const RobotLog& log,
     clock = std::chrono::steady_clock::now();
     const ScaleRefit refitted = refit_plan_scale(
         result, log, maps.plan_walls(), options.plan.runner, refit_options, location.scale,
-        fit_shift, pass == 1 ? min_shift : 0.0, location.keep_scale && pass == 1, maps.plan_rays());
+        fit_shift, pass == 1 ? min_shift : 0.0, location.keep_scale && pass == 1,
+        location.scale_at_faces, maps.plan_rays());
     fit_shift = refitted.shift_used();
     const double refit = refitted.scale;
     result.scale_search_seconds += seconds_since(clock);

@@ -22,12 +22,13 @@ struct ScaleRefit {
 /// (fit_scale; with `fit_shift`, and a shift of the walls' surfaces, used where it is at least
 /// `min_shift` world metres) and stores the refitted poses in the records; returns the scale
 /// (`scale` when fewer than options.min_scans scans are usable, or when the scale is
-/// `registered` by the maps and the shift not used) and sets result.plan_scale_std and
-/// result.plan_surface_shift.
+/// `registered` by the maps and the shift not used, unless ScaleRefitOptions::
+/// raise_registered_scale applies: a registration not `at_faces` and a higher refit) and sets
+/// result.plan_scale_std and result.plan_surface_shift.
 ScaleRefit refit_plan_scale(DualLocalization& result, const RobotLog& log,
                             const WallField& plan_walls, const FilterRunnerOptions& plan_runner,
                             const ScaleRefitOptions& options, double scale, bool fit_shift,
-                            double min_shift, bool registered,
+                            double min_shift, bool registered, bool at_faces = false,
                             const GridRayCaster* plan_caster = nullptr);
 
 /// Steps 4 and 5 of localize_dual: the plan filter tracks (track_plan) and, with an unknown

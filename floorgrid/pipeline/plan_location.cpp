@@ -82,7 +82,9 @@ ScaleRange scale_range(const DualMaps& maps, const DualLocalizerInputs& inputs,
   // A clear registration's scale and pose are kept as they are: the plan filter's search and
   // refit are biased by how the walls are drawn (a raster's thick strokes: -0.2 to -1%; a DXF's
   // lines traced around them: -0.25 to -0.56% on the semi-real datasets), the registration is
-  // not (within 0.15% on every raster and DXF plan of the matrix).
+  // not (within 0.15% on every raster and DXF plan of the semi-real matrix, drawn where the
+  // laser saw the walls; on architects' drawings it is low by the outer walls' faces, which
+  // ScaleRefitOptions::raise_registered_scale takes up).
   if (is_clear)
     clear = reg.best.transform;
   if (scale >= usual.min && scale <= usual.max)
@@ -135,6 +137,7 @@ PlanLocation locate_run_on_plan(const DualMaps& maps, const DualLocalizerInputs&
     location.from_maps = true;
     if (clear) {
       keep_registration_scale(*clear, location, result);  // (see scale_range)
+      location.scale_at_faces = prior->faces.fitted;
     } else if (!inputs.plan_scale) {
       // ... fitted on the run's scans placed on the plan by the bent map, from its scale within
       // its spread: a drawing wrong in places, or a bent gridmap, has no one scale.

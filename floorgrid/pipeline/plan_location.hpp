@@ -18,8 +18,13 @@ struct PlanLocation {
   /// clearly enough that the plan filter's scale search is not needed.
   bool from_maps = false;
   /// And the scale is kept as the maps gave it, not refitted after tracking (a raster plan:
-  /// the refit is biased by its strokes' thickness, the registration is not).
+  /// the refit is biased by its strokes' thickness, the registration of a plan drawn where the
+  /// laser saw the walls is not; see ScaleRefitOptions::raise_registered_scale for one that
+  /// did not meet the outer walls' faces).
   bool keep_scale = false;
+  /// And that registration met the outer walls' faces (the maps' faces fit was used,
+  /// MapAlignment::faces): it is not biased low by them.
+  bool scale_at_faces = false;
 };
 
 /// Step 2 of localize_dual: the plan is related to the run from the given start poses or,
