@@ -286,10 +286,10 @@ struct ScaleRefitOptions {
   /// refitted alone comes out higher: then the refit is used. The laser sees an outer wall
   /// drawn as a line at its inner face, so a registration of the gridmap's outline on the
   /// drawn one comes out low (on bench/real_matrix.sh's drawings, seeds 1-6, the maps' scale
-  /// was low on all 54 rows, by 0.1-3.0%); a refit lower still is the walls' thickness biasing
-  /// the refit too. On the 40 rows that kept the registered scale, a refit used whatever its
-  /// direction moved the scale 0.75-1.46% further down on three; used only when higher, 11 rows
-  /// moved towards the truth and none away.
+  /// was low on all 50 rows that compared it, by 0.1-3.0%); a refit lower still is the walls'
+  /// thickness biasing the refit too. On the 40 rows that kept the registered scale, a refit used
+  /// whatever its direction moved the scale 0.75-1.46% further down on three; used only when
+  /// higher, 11 rows moved towards the truth and none away.
   bool raise_registered_scale = true;
   /// World metres: the fitted shift is used only where it is at least this large; a plan whose
   /// walls' faces lie on its lines has its scale fitted alone, as before, and keeps a scale the
