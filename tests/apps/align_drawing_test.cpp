@@ -25,21 +25,28 @@ bool has_note(const json& metrics, const std::string& text) {
   return false;
 }
 
+/// `simulate --from-plan` of a drawing in ../shared/data (with `args`), then `align` with gt
+/// only (the pairs do not depend on the models); the alignment's metrics.json.
+json simulate_and_align(const TempDir& dir, const std::string& drawing, const std::string& args) {
+  const auto sim = run_floorgrid("simulate --from-plan " + quoted(test::data_path(drawing)) + " " +
+                                 args + " --out " + quoted(dir / "data"));
+  EXPECT_EQ(sim.status, 0) << sim.err;
+  test::write_file(dir / "gt.yaml", "align:\n  models:\n    models: gt\n");
+  const auto run = run_floorgrid("align " + quoted(dir / "data") + " --config " +
+                                 quoted(dir / "gt.yaml") + " --out " + quoted(dir / "out"));
+  EXPECT_EQ(run.status, 0) << run.out << run.err;
+  return read_json(dir / "out" / "metrics.json");
+}
+
 TEST(AlignOnADrawing, TheRunRaisesTheScaleTheMapsRegisteredSmall) {
   // bench/real_matrix.sh's F5 row at seed 5: the Halmstad F5 layout's walls are thin strokes,
   // built into outer walls of 0.3-0.45 m; the maps' faces fit finds its two offsets alike and
   // is not used, and the run's surface shift is under a pixel.
   FLOORGRID_REQUIRE_DATA("halmstad/F5/layout/F5_layout.png");
   TempDir dir;
-  const auto sim = run_floorgrid(
-      "simulate --from-plan " + quoted(test::data_path("halmstad/F5/layout/F5_layout.png")) +
-      " --resolution 0.05 --seed 5 --drawing-errors some --out " + quoted(dir / "data"));
-  ASSERT_EQ(sim.status, 0) << sim.err;
-  test::write_file(dir / "gt.yaml", "align:\n  models:\n    models: gt\n");
-  const auto run = run_floorgrid("align " + quoted(dir / "data") + " --config " +
-                                 quoted(dir / "gt.yaml") + " --out " + quoted(dir / "out"));
-  ASSERT_EQ(run.status, 0) << run.out << run.err;
-  const json m = read_json(dir / "out" / "metrics.json");
+  const json m = simulate_and_align(dir, "halmstad/F5/layout/F5_layout.png",
+                                    "--resolution 0.05 --seed 5 --drawing-errors some");
+  ASSERT_FALSE(HasFailure());
   const double truth = m["domain"]["truth_plan_scale"].get<double>();
   // The maps' registration, which the run used to keep, is 0.6% small here (its similarity
   // maps the gridmap into the plan: plan metres per world metre).
@@ -60,15 +67,9 @@ TEST(AlignOnADrawing, APassTrackedAgainThatMatchesFarFewerScansIsNotKept) {
   // (ScaleRefitOptions::retrack_min_share), and its scale is right.
   FLOORGRID_REQUIRE_DATA("dxf/house_floorplan_r2004.dxf");
   TempDir dir;
-  const auto sim = run_floorgrid("simulate --from-plan " +
-                                 quoted(test::data_path("dxf/house_floorplan_r2004.dxf")) +
-                                 " --seed 3 --drawing-errors some --out " + quoted(dir / "data"));
-  ASSERT_EQ(sim.status, 0) << sim.err;
-  test::write_file(dir / "gt.yaml", "align:\n  models:\n    models: gt\n");
-  const auto run = run_floorgrid("align " + quoted(dir / "data") + " --config " +
-                                 quoted(dir / "gt.yaml") + " --out " + quoted(dir / "out"));
-  ASSERT_EQ(run.status, 0) << run.out << run.err;
-  const json m = read_json(dir / "out" / "metrics.json");
+  const json m =
+      simulate_and_align(dir, "dxf/house_floorplan_r2004.dxf", "--seed 3 --drawing-errors some");
+  ASSERT_FALSE(HasFailure());
   EXPECT_TRUE(has_note(m, "the last pass's poses and scale kept"));
   const double truth = m["domain"]["truth_plan_scale"].get<double>();
   EXPECT_LT(std::abs(m["plan_scale"].get<double>() / truth - 1.0), 0.005);  // measured 0.01%
