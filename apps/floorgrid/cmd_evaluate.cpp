@@ -89,10 +89,7 @@ void run_evaluate(const std::string& dataset, const std::string& model_file, con
   j["dataset"] = d.manifest.display_name();
   j["model_file"] = model_file;
   j["truth"] = truth.kind;
-  j["domain"] = {{"kind", domain.kind}, {"points", domain.points_in_plan.cols()}};
-  if (truth.plan_to_grid)
-    if (const std::optional<double> scale = truth_plan_scale(domain, *truth.plan_to_grid))
-      j["domain"]["truth_plan_scale"] = *scale;
+  j["domain"] = io::domain_json(domain);
   nlohmann::json m = io::model_metrics_json(judged);
   m["heat_map"] = heat.metrics;
   j["models"] = {{name, m}};

@@ -37,7 +37,7 @@ EvaluationDomain warp_domain(
     if (observed.at(plan_to_grid(samples.col(i))) <= radius)
       inside.push_back(i);
   }
-  return {"warp", keep(samples, inside), spacing};
+  return {"warp", keep(samples, inside), spacing, std::nullopt};
 }
 
 EvaluationDomain hull_domain(const VectorFloorplan& walls, const Eigen::Matrix2Xd& pair_points,
@@ -53,7 +53,7 @@ EvaluationDomain hull_domain(const Eigen::Matrix2Xd& samples, const Eigen::Matri
     if (inside_convex_polygon(hull, samples.col(i)))
       inside.push_back(i);
   }
-  return {"manual_pairs_hull", keep(samples, inside), spacing};
+  return {"manual_pairs_hull", keep(samples, inside), spacing, std::nullopt};
 }
 
 std::optional<double> truth_plan_scale(

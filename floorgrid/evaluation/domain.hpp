@@ -15,6 +15,8 @@ struct EvaluationDomain {
   std::string kind;                 ///< "warp" or "manual_pairs_hull"
   Eigen::Matrix2Xd points_in_plan;  ///< 2 x N, metres
   double spacing = 0.05;            ///< metres between wall samples
+  /// With a truth: the plan scale it gives over these points (truth_plan_scale), else none.
+  std::optional<double> truth_plan_scale;
 };
 
 /// Wall samples every `spacing` metres whose true grid position has an observed (free or

@@ -28,6 +28,13 @@ json number(double v) {
 
 }  // namespace
 
+json domain_json(const EvaluationDomain& d) {
+  json j = {{"kind", d.kind}, {"points", d.points_in_plan.cols()}};
+  if (d.truth_plan_scale)
+    j["truth_plan_scale"] = number(*d.truth_plan_scale);
+  return j;
+}
+
 json model_metrics_json(const ModelAlignment& m) {
   const ModelReport& r = m.report;
   json j = json::object();
@@ -278,10 +285,7 @@ json metrics_json(const Alignment& a, const std::string& dataset, const Alignmen
                        {"in_free_space", number(m.in_free_space)},
                        {"plan_scale", number(1.0 / m.transform.scale)}};
   }
-  j["domain"] = {{"kind", a.domain.kind}, {"points", a.domain.points_in_plan.cols()}};
-  if (a.truth)
-    if (const std::optional<double> scale = truth_plan_scale(a.domain, *a.truth))
-      j["domain"]["truth_plan_scale"] = number(*scale);
+  j["domain"] = domain_json(a.domain);
   j["models"] = json::object();
   for (const ModelAlignment& m : a.models)
     j["models"][m.report.name] = model_metrics_json(m);

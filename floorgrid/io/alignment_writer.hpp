@@ -27,6 +27,10 @@ struct AlignmentTimings {
 /// distances. Shared by `align` and `evaluate`.
 nlohmann::json model_metrics_json(const ModelAlignment& model);
 
+/// Where models were judged (metrics.json `domain`): its kind, points and the truth's plan scale
+/// there. Shared by `align` and `evaluate`.
+nlohmann::json domain_json(const EvaluationDomain& domain);
+
 /// Draws the plan's walls, mapped into the gridmap's frame by `plan_to_grid`, on a picture of the
 /// gridmap's pixels: a DXF plan's segments and arcs as lines, else its wall samples as dots.
 void draw_plan_walls(RgbImage& picture, const AlignmentInputs& inputs,

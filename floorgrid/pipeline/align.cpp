@@ -121,15 +121,17 @@ DatasetTruth dataset_truth(const AlignmentInputs& in) {
 
 EvaluationDomain truth_domain(const AlignmentInputs& in, const DatasetTruth& truth,
                               double spacing) {
+  EvaluationDomain d{"none", Eigen::Matrix2Xd(2, 0), spacing, std::nullopt};
   if (truth.kind == "warp") {
-    return in.plan ? warp_domain(*in.plan, in.gridmap, *truth.plan_to_grid, spacing)
-                   : warp_domain(in.plan_wall_samples, in.gridmap, *truth.plan_to_grid, spacing);
+    d = in.plan ? warp_domain(*in.plan, in.gridmap, *truth.plan_to_grid, spacing)
+                : warp_domain(in.plan_wall_samples, in.gridmap, *truth.plan_to_grid, spacing);
+  } else if (truth.kind == "manual_pairs_hull") {
+    d = in.plan ? hull_domain(*in.plan, in.manual_pairs->points_in_plan, spacing)
+                : hull_domain(in.plan_wall_samples, in.manual_pairs->points_in_plan, spacing);
   }
-  if (truth.kind == "manual_pairs_hull") {
-    return in.plan ? hull_domain(*in.plan, in.manual_pairs->points_in_plan, spacing)
-                   : hull_domain(in.plan_wall_samples, in.manual_pairs->points_in_plan, spacing);
-  }
-  return {"none", Eigen::Matrix2Xd(2, 0), spacing};
+  if (truth.plan_to_grid)
+    d.truth_plan_scale = truth_plan_scale(d, *truth.plan_to_grid);
+  return d;
 }
 
 WallDistance wall_distance(const Eigen::Matrix2Xd& samples, const Eigen::Matrix2Xd& mapped,

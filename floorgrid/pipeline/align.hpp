@@ -172,8 +172,8 @@ struct DatasetTruth {
 DatasetTruth dataset_truth(const AlignmentInputs& inputs);
 
 /// The truth's domain: plan wall samples every `spacing` metres where a warp is known to hold
-/// (the gridmap saw something near), or inside the manual pairs' hull; no points without a
-/// truth.
+/// (the gridmap saw something near), or inside the manual pairs' hull, with the plan scale the
+/// truth gives there; no points without a truth.
 EvaluationDomain truth_domain(const AlignmentInputs& inputs, const DatasetTruth& truth,
                               double spacing);
 

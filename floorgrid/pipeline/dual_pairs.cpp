@@ -72,35 +72,34 @@ ScaleRefit refit_plan_scale(DualLocalization& result, const RobotLog& log,
         "the plan's walls were met {:.3f} m (+-{:.3f} m) nearer the laser than drawn{}",
         result.plan_surface_shift, result.plan_surface_shift_std,
         shift_used ? ", fitted with the scale" : ": on their lines, so the scale is fitted alone"));
-    const bool may_raise = registered && !at_faces && options.raise_registered_scale;
-    if (!shift_used && registered && !may_raise) {
-      // The walls' faces lie on the drawn lines: a registered scale is kept with the scans'
-      // poses (a registration that met the outer walls' faces is not biased by them).
+    // The walls' faces lie on the drawn lines: a registered scale is kept with the scans' poses,
+    // unless the registration did not meet the outer walls' faces (then it lies low) and the
+    // scale refitted alone comes out higher (lower still is the walls' thickness biasing the
+    // refit too).
+    const bool on_lines_registered = !shift_used && registered;
+    const bool may_raise = !at_faces && options.raise_registered_scale;
+    std::optional<ScaleFit> alone;
+    if (!on_lines_registered || may_raise)
+      alone = fit_with(false);
+    if (on_lines_registered && !(may_raise && alone->scale > scale)) {
       result.notes.push_back(kKeptRegisteredScale);
       return {scale};
     }
-    ScaleFit alone = fit_with(false);
-    if (!shift_used && registered) {
-      // ... but one that did not lies low, and a refit above it says by how much; a refit
-      // lower still is the walls' thickness biasing the refit too.
-      if (!(alone.scale > scale)) {
-        result.notes.push_back(kKeptRegisteredScale);
-        return {scale};
-      }
+    if (on_lines_registered) {
       result.notes.push_back(fmt::format(
           "the scale refitted alone, {:.4f}, lies above the maps' registration's {:.4f}, which "
           "did not meet the outer walls' faces (a drawn outline registered on the laser's comes "
           "out small): the refit is used",
-          alone.scale, scale));
+          alone->scale, scale));
     }
     if (shift_used) {
-      refit.scale_at_drawn_walls = alone.scale;
+      refit.scale_at_drawn_walls = alone->scale;
       result.notes.push_back(
           fmt::format("fitted on the drawn walls without it, as the maps' registration meets "
                       "them, the plan scale would be {:.4f}",
-                      alone.scale));
+                      alone->scale));
     } else {
-      fit = std::move(alone);  // as the fit was without the shift
+      fit = std::move(*alone);  // as the fit was without the shift
     }
   }
   result.plan_scale_std = fit.scale_std;

@@ -46,7 +46,7 @@ TEST(ModelComparison, CvAndStdComeFromTheErrorSourceWhileTheFitUsesThePairs) {
   const auto [exact, noisy] = tour_pairs();
   ModelComparisonOptions options;
   options.models = {"tps"};
-  const EvaluationDomain no_domain{"none", Eigen::Matrix2Xd(2, 0), 0.05};
+  const EvaluationDomain no_domain{"none", Eigen::Matrix2Xd(2, 0), 0.05, std::nullopt};
   const std::optional<PairNoise> noise = pair_noise(noisy);
   ASSERT_TRUE(noise);
 
