@@ -1159,6 +1159,82 @@ void visit(OptionVisitor& v, ScaleRefitOptions& o) {
            .range = between(0, 1)});
 }
 
+void visit(OptionVisitor& v, SubmapCheckOptions& o) {
+  v.field("enabled", o.enabled,
+          {.unit = "",
+           .doc = "Re-place the plan filter where the last scans' submap (seen from the gridmap "
+                  "filter's poses) fits the plan clearly better than where it is",
+           .choices = {}});
+  v.field(
+      "every", o.every,
+      {.unit = "scans", .doc = "Scans between two checks", .choices = {}, .range = at_least(1)});
+  v.field("window", o.window,
+          {.unit = "scans",
+           .doc = "Scans back the submap may reach",
+           .choices = {},
+           .range = at_least(1)});
+  v.field("spacing", o.spacing,
+          {.unit = "m",
+           .doc = "A scan joins the submap when the gridmap pose moved this far since the last "
+                  "one that joined",
+           .choices = {},
+           .range = kNonNegative});
+  v.field("spacing_heading", o.spacing_heading,
+          {.unit = "rad", .doc = "... or turned this much", .choices = {}, .range = kNonNegative});
+  v.field("max_scans", o.max_scans,
+          {.unit = "scans",
+           .doc = "At most this many (the newest) make the submap",
+           .choices = {},
+           .range = at_least(1)});
+  v.field("min_scans", o.min_scans,
+          {.unit = "scans", .doc = "Fewer: no check", .choices = {}, .range = at_least(1)});
+  v.group("submap", "The submap's points", [&] { visit(v, o.submap); });
+  v.field("search_distance", o.search_distance,
+          {.unit = "m",
+           .doc = "Shifts searched each way around the plan filter's pose",
+           .choices = {},
+           .range = between(0, 1000)});
+  v.field(
+      "search_step", o.search_step,
+      {.unit = "m", .doc = "Their lattice's step", .choices = {}, .range = between(0.001, 1000)});
+  v.field("search_heading", o.search_heading,
+          {.unit = "rad",
+           .doc = "Turns searched each way (about the robot)",
+           .choices = {},
+           .range = between(0, 3.2)});
+  v.field("heading_step", o.heading_step,
+          {.unit = "rad", .doc = "Their step", .choices = {}, .range = between(0.0001, 3.2)});
+  v.field("coarse_points", o.coarse_points,
+          {.unit = "",
+           .doc = "Submap points the lattice is scored with (all of them refine the best)",
+           .choices = {},
+           .range = between(1, 1e7)});
+  v.field("min_shift", o.min_shift,
+          {.unit = "m",
+           .doc = "The plan filter is re-placed at the best placement at least this far from its "
+                  "pose",
+           .choices = {},
+           .range = kPositive});
+  v.field("min_gain", o.min_gain,
+          {.unit = "",
+           .doc = "... when that explains at least this share more of the submap than the best "
+                  "nearer",
+           .choices = {},
+           .range = kShare});
+  v.field("max_from_registration", o.max_from_registration,
+          {.unit = "m",
+           .doc = "A placement farther than this from where the run's global registration puts "
+                  "the robot is not taken",
+           .choices = {},
+           .range = kPositive});
+  v.field("confirmations", o.confirmations,
+          {.unit = "",
+           .doc = "Checks in a row that must find the better placement before the plan filter is "
+                  "re-placed",
+           .choices = {},
+           .range = at_least(1)});
+}
+
 void visit(OptionVisitor& v, DualCheckOptions& o) {
   v.field("local_window", o.local_window,
           {.unit = "",
@@ -1249,6 +1325,8 @@ void visit(OptionVisitor& v, DualCheckOptions& o) {
   v.field("reinitialize_heading_sigma", o.reinitialize_heading_sigma,
           {.unit = "rad", .doc = "Its heading spread", .choices = {}, .range = kNonNegative});
   v.require(o.local_window >= o.local_min_pairs, "local_window", ">= local_min_pairs");
+  v.group("submap", "The plan filter's pose checked against the last scans' submap",
+          [&] { visit(v, o.submap); });
 }
 
 void visit(OptionVisitor& v, ScaleSearchOptions& o) {

@@ -24,6 +24,7 @@ void visit(OptionVisitor& v, BeamModelOptions& o);
 void visit(OptionVisitor& v, ConvergenceOptions& o);
 void visit(OptionVisitor& v, CrossValidationOptions& o);
 void visit(OptionVisitor& v, io::DatasetLimits& o);
+void visit(OptionVisitor& v, SubmapCheckOptions& o);
 void visit(OptionVisitor& v, DualCheckOptions& o);
 void visit(OptionVisitor& v, ErrorModelOptions& o);
 void visit(OptionVisitor& v, DualLocalizerOptions& o);

@@ -21,6 +21,7 @@
 #include "floorgrid/pipeline/outlier_scans.hpp"
 #include "floorgrid/pipeline/plan_registration.hpp"
 #include "floorgrid/pipeline/pose_pull.hpp"
+#include "floorgrid/pipeline/submap_check.hpp"
 #include "floorgrid/robot/robot_log.hpp"
 
 namespace floorgrid {
@@ -254,6 +255,10 @@ struct DualCheckOptions {
   /// ... and around the pose the global registration gives.
   double reinitialize_sigma = 1.0;
   double reinitialize_heading_sigma = 0.2;  ///< radians
+  /// The plan filter's pose checked against the submap of the last scans (SubmapCheck); when
+  /// it is re-placed, the scans since the last check make no pairs, and the local
+  /// registration starts afresh. It re-places with the local spreads above.
+  SubmapCheckOptions submap;
 };
 
 /// Whether the scale refit fits a surface shift (ScaleRefitOptions::surface_shift).

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include <fmt/format.h>
+
 #include "floorgrid/pipeline/dual_pairs.hpp"
 #include "floorgrid/pipeline/filter_runner.hpp"
 
@@ -76,6 +78,11 @@ TrackingStart DualCheck::gridmap_start(std::size_t scan, const Pose2& plan_pose)
           .position_sigma = near ? options_.local_reinitialize_sigma : options_.reinitialize_sigma,
           .heading_sigma = near ? options_.local_reinitialize_heading_sigma
                                 : options_.reinitialize_heading_sigma};
+}
+
+void DualCheck::forget_local() {
+  local_.clear();
+  disagreeing_ = unconverged_ = grossly_ = 0;
 }
 
 namespace {
@@ -152,6 +159,9 @@ void track_plan(const DualMaps& maps, const RobotLog& log, const DualLocalizerOp
   if (options.guide_plan_by_gridmap)
     runner.guide(gridmap_guide(result));
   DualCheck check(options.dual_check, location.registration, location.scale);
+  SubmapCheck submap(options.dual_check.submap, log, maps.plan_model().field(), location.scale);
+  std::size_t vouched = result.plan_start_scan;  // the last scan a submap check vouched for
+  std::vector<double> shifts;
   GridmapMender mender(maps, log, options);
   const std::size_t n = log.scans.size();
   std::size_t usable = 0;
@@ -175,9 +185,40 @@ void track_plan(const DualMaps& maps, const RobotLog& log, const DualLocalizerOp
         runner.filter().initialize_tracking(restart->start, maps.plan());
         record.plan_reinitialized = true;
       }
+      const Pose2 grid_pose =
+          record.grid.matched && record.grid.match.ok() ? record.grid.match.pose : record.grid.pose;
+      submap.add(i, grid_pose);
+      if (!record.plan_reinitialized && record.plan.converged && submap.due(i)) {
+        const Pose2 plan_pose = record.plan.matched ? record.plan.match.pose : record.plan.pose;
+        const Pose2 registered = location.registration.plan_pose(grid_pose);
+        if (const std::optional<SubmapRelocation> moved =
+                submap.check(i, grid_pose, plan_pose, registered)) {
+          count_divergence(result.plan_divergences, "submap");
+          runner.filter() = ParticleFilter(options.plan.filter, ++seed);
+          runner.filter().initialize_tracking(
+              plan_start(moved->plan_pose,
+                         options.dual_check.local_reinitialize_sigma / location.scale,
+                         options.dual_check.local_reinitialize_heading_sigma, location.scale, 0.0),
+              maps.plan());
+          record.plan_reinitialized = true;
+          check.forget_local();
+          // Its poses since the last check were where the submap does not fit.
+          for (std::size_t k = vouched + 1; k <= i; ++k)
+            result.scans[k].consistent = false;
+          shifts.push_back(moved->shift);
+        }
+        vouched = i;
+      }
     }
     usable += usable_for_pairs(record, options.refine_poses);
     report_progress(progress, "plan", i + 1, n, record.plan.converged, usable);
+  }
+  if (!shifts.empty()) {
+    std::sort(shifts.begin(), shifts.end());
+    result.notes.push_back(fmt::format(
+        "submap check: the plan filter was re-placed {} time(s), {:.2f}-{:.2f} m from where it "
+        "was, where the last scans' submap fits the plan better",
+        shifts.size(), shifts.front(), shifts.back()));
   }
   result.plan_corrections = runner.corrections();
   result.plan_guided_steps = runner.guided_steps();

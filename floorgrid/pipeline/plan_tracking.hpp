@@ -32,6 +32,10 @@ class DualCheck {
   /// registration when fresh, with its spread, else the global one with its wider spread).
   TrackingStart gridmap_start(std::size_t scan, const Pose2& plan_pose) const;
 
+  /// Forgets the local registration (its poses were of a plan filter found off) and the
+  /// disagreements counted.
+  void forget_local();
+
  private:
   const DualCheckOptions& options_;
   const PlanRegistration& global_;

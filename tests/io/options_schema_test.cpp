@@ -51,6 +51,7 @@ TEST(OptionsSchema, EveryFieldOfEveryOptionsStructIsListed) {
   expect_complete<ScaleSearchOptions>("ScaleSearchOptions");
   expect_complete<ScaleRange>("ScaleRange");
   expect_complete<DualCheckOptions>("DualCheckOptions");
+  expect_complete<SubmapCheckOptions>("SubmapCheckOptions");
   expect_complete<ScaleRefitOptions>("ScaleRefitOptions");
   expect_complete<PairExtractionOptions>("PairExtractionOptions");
   expect_complete<OutlierScanOptions>("OutlierScanOptions");
