@@ -13,6 +13,8 @@
 # Usage: bench/stability.sh [build-dir] [work-dir] [fr079 seeds] [semi-real seeds]
 #        (defaults: build, a temporary folder, "1 2 3 4 5 6 7 8 9 10", "1 2 3 4 5";
 #         a seed list of "-" skips that part)
+# STABILITY_CONFIG=FILE passes `--config FILE` to every align (an option's effect on the spreads,
+# e.g. align.localization.dual_check.submap.enabled: true).
 # Nothing was tuned on seeds above 3, on the bag or MCAP encodings, or on the semi-real logs
 # other than fr079.
 set -uo pipefail
@@ -35,7 +37,8 @@ run_align() {
   local out="$work/$group-$source-$seed"
   local start end rc
   start=$(date +%s.%N)
-  "$bin" align "$dataset" --seed "$seed" --out "$out" >"$out.log" 2>&1
+  "$bin" align "$dataset" --seed "$seed" ${STABILITY_CONFIG:+--config "$STABILITY_CONFIG"} \
+    --out "$out" >"$out.log" 2>&1
   rc=$?
   end=$(date +%s.%N)
   echo "$group $source $seed $rc $(echo "$end - $start" | bc) $out" >>"$runs"

@@ -20,6 +20,7 @@ struct RoomRun {
   OccupancyGrid plan_grid;
   std::vector<Pose2> poses;
   RobotLog log;
+  std::unique_ptr<LikelihoodFieldModel> field;  // the plan's, as the plan filter's
 
   RoomRun() {
     for (const Segment& s : world.segments())
@@ -32,6 +33,8 @@ struct RoomRun {
       poses.push_back({1.5 + 0.4 * j, 4.0 + 0.1 * j, 0.1 * j + (k >= 16 && k < 32 ? 3.0 : 0.0)});
     }
     log = test::log_along(world, poses);
+    field = std::make_unique<LikelihoodFieldModel>(plan_grid,
+                                                   LikelihoodFieldOptions{.sigma_hit = 0.15});
   }
   /// The true plan pose of world pose `p`.
   Pose2 plan_pose(const Pose2& p) const {
@@ -40,13 +43,26 @@ struct RoomRun {
   }
 };
 
-TEST(SubmapCheck, RePlacesAPlanFilterThatSettledMetresOffWhereTheRunsSubmapFits) {
-  const RoomRun run;
-  const LikelihoodFieldModel field(run.plan_grid, LikelihoodFieldOptions{.sigma_hit = 0.15});
+/// The check's options, enabled.
+SubmapCheckOptions enabled() {
   SubmapCheckOptions options;
   options.enabled = true;
+  return options;
+}
+
+/// A check on `run` that was given every scan of its run.
+SubmapCheck given_every_scan(const SubmapCheckOptions& options, const RoomRun& run) {
+  SubmapCheck check(options, run.log, *run.field, RoomRun::scale);
+  for (std::size_t i = 0; i < run.poses.size(); ++i)
+    check.add(i, run.poses[i]);
+  return check;
+}
+
+TEST(SubmapCheck, RePlacesAPlanFilterThatSettledMetresOffWhereTheRunsSubmapFits) {
+  const RoomRun run;
+  SubmapCheckOptions options = enabled();
   options.confirmations = 2;
-  SubmapCheck check(options, run.log, field, RoomRun::scale);
+  SubmapCheck check(options, run.log, *run.field, RoomRun::scale);
   // The plan filter 1.6 world metres off along the plan's x and 0.05 rad turned; the global
   // registration a metre off the truth too, the other way.
   const auto off = [&](std::size_t i) {
@@ -80,15 +96,14 @@ TEST(SubmapCheck, RePlacesAPlanFilterThatSettledMetresOffWhereTheRunsSubmapFits)
   // Checked again at once: not due (no scan joined since).
   EXPECT_FALSE(check.due(last));
   // With one confirmation (the default), the first check re-places it.
-  SubmapCheckOptions once;
-  once.enabled = true;
-  SubmapCheck first(once, run.log, field, RoomRun::scale);
+  const SubmapCheckOptions once = enabled();
+  SubmapCheck first(once, run.log, *run.field, RoomRun::scale);
   for (std::size_t i = 0; i < 16; ++i)
     first.add(i, run.poses[i]);
   EXPECT_TRUE(first.check(15, run.poses[15], off(15), registered(15)).has_value());
   // Where the global registration puts the robot more than max_from_registration (2 m) from
   // the truth, the check does not take the truth: a drawing's door pitch would fit as well.
-  SubmapCheck far(options, run.log, field, RoomRun::scale);
+  SubmapCheck far(options, run.log, *run.field, RoomRun::scale);
   for (std::size_t i = 0; i < run.poses.size(); ++i) {
     far.add(i, run.poses[i]);
     if (far.due(i)) {
@@ -100,19 +115,13 @@ TEST(SubmapCheck, RePlacesAPlanFilterThatSettledMetresOffWhereTheRunsSubmapFits)
 
 TEST(SubmapCheck, LeavesAPlanFilterWhereTheSubmapFitsAndOneOffByLessThanMinShift) {
   const RoomRun run;
-  const LikelihoodFieldModel field(run.plan_grid, LikelihoodFieldOptions{.sigma_hit = 0.15});
-  SubmapCheckOptions options;
-  options.enabled = true;
-  SubmapCheck check(options, run.log, field, RoomRun::scale);
-  for (std::size_t i = 0; i < run.poses.size(); ++i)
-    check.add(i, run.poses[i]);
+  const SubmapCheckOptions options = enabled();
+  SubmapCheck check = given_every_scan(options, run);
   const std::size_t last = run.poses.size() - 1;
   const Pose2 truth = run.plan_pose(run.poses[last]);
   EXPECT_FALSE(check.check(last, run.poses[last], truth, truth).has_value());
   // 0.3 m off: within min_shift, the filter's own business (its scan matcher).
-  SubmapCheck again(options, run.log, field, RoomRun::scale);
-  for (std::size_t i = 0; i < run.poses.size(); ++i)
-    again.add(i, run.poses[i]);
+  SubmapCheck again = given_every_scan(options, run);
   EXPECT_FALSE(again
                    .check(last, run.poses[last],
                           {truth.x, truth.y + 0.3 / RoomRun::scale, truth.theta}, truth)
@@ -121,10 +130,8 @@ TEST(SubmapCheck, LeavesAPlanFilterWhereTheSubmapFitsAndOneOffByLessThanMinShift
 
 TEST(SubmapCheck, ChecksOnlyWithEnoughScansSpacedByTheRobotsMotionAndWhenEnabled) {
   const RoomRun run;
-  const LikelihoodFieldModel field(run.plan_grid, LikelihoodFieldOptions{.sigma_hit = 0.15});
-  SubmapCheckOptions options;
-  options.enabled = true;
-  SubmapCheck check(options, run.log, field, RoomRun::scale);
+  SubmapCheckOptions options = enabled();
+  SubmapCheck check(options, run.log, *run.field, RoomRun::scale);
   // The robot standing still: one scan joins, however many are added.
   for (std::size_t i = 0; i < 30; ++i)
     check.add(i, run.poses[0]);
