@@ -17,7 +17,7 @@ namespace floorgrid {
 /// scan at a time, a plan filter in a building of look-alike offices and long corridors can
 /// settle a door or a few metres off and follow the run from there, and the dual check's
 /// local registration, fitted on its own last poses, follows it (fr079's real log: the first
-/// 100-500 scans 1.7-2.3 m off on 8 of 10 seeds, and 1,000-2,000 scans 2-3 m off on 2). A
+/// 100-500 scans 1.6-2.7 m off on 8 of 10 seeds, and 1,600-2,000 scans 1.5-4 m off on 2). A
 /// submap spanning metres of the run has one place where it fits.
 ///
 /// Off by default: on fr079's real log it keeps every seed's pairs on the hand-made pairs, but
