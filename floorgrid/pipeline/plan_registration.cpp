@@ -128,9 +128,6 @@ Pose2 LocalRegistration::map_pose(const Pose2& pose_in_plan) const {
   return {m.x(), m.y(), normalize_angle(pose_in_plan.theta - offset_.theta)};
 }
 
-namespace {
-
-/// At most `points` of `cloud`, evenly thinned.
 ScanObservation thin(const ScanObservation& cloud, std::size_t points) {
   ScanObservation thinned;
   const std::size_t keep = std::min(cloud.size(), std::max<std::size_t>(1, points));
@@ -140,6 +137,8 @@ ScanObservation thin(const ScanObservation& cloud, std::size_t points) {
   }
   return thinned;
 }
+
+namespace {
 
 /// Each seeded hypothesis and its neighbours half a lattice step away in every dimension.
 ParticleSet half_step_neighbours(const HypothesisSeeding& seeds, double heading_step,

@@ -32,6 +32,9 @@ ScanObservation build_submap(const RobotLog& log, std::span<const std::size_t> s
                              std::span<const Pose2> poses, const Pose2& origin,
                              const SubmapOptions& options = {});
 
+/// At most `points` of `cloud` (at least one), evenly thinned.
+ScanObservation thin(const ScanObservation& cloud, std::size_t points);
+
 /// How a run is located on a plan.
 struct PlanRegistrationOptions {
   /// The lattice: 0.25 m, 7.5 degrees, ten scales; coarse enough to be quick, fine enough for

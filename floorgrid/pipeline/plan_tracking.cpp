@@ -163,6 +163,11 @@ void track_plan(const DualMaps& maps, const RobotLog& log, const DualLocalizerOp
   std::size_t vouched = result.plan_start_scan;  // the last scan a submap check vouched for
   std::vector<double> shifts;
   GridmapMender mender(maps, log, options);
+  const auto restart_plan_filter = [&](const TrackingStart& start, ScanRecord& record) {
+    runner.filter() = ParticleFilter(options.plan.filter, ++seed);
+    runner.filter().initialize_tracking(start, maps.plan());
+    record.plan_reinitialized = true;
+  };
   const std::size_t n = log.scans.size();
   std::size_t usable = 0;
   bool plan_was_sure = false;
@@ -181,9 +186,7 @@ void track_plan(const DualMaps& maps, const RobotLog& log, const DualLocalizerOp
       if (const std::optional<PlanRestart> restart = check.judge(i, record)) {
         if (restart->reason != "lost")  // a divergence the filter counted itself
           count_divergence(result.plan_divergences, restart->reason);
-        runner.filter() = ParticleFilter(options.plan.filter, ++seed);
-        runner.filter().initialize_tracking(restart->start, maps.plan());
-        record.plan_reinitialized = true;
+        restart_plan_filter(restart->start, record);
       }
       const Pose2 grid_pose =
           record.grid.matched && record.grid.match.ok() ? record.grid.match.pose : record.grid.pose;
@@ -194,13 +197,11 @@ void track_plan(const DualMaps& maps, const RobotLog& log, const DualLocalizerOp
         if (const std::optional<SubmapRelocation> moved =
                 submap.check(i, grid_pose, plan_pose, registered)) {
           count_divergence(result.plan_divergences, "submap");
-          runner.filter() = ParticleFilter(options.plan.filter, ++seed);
-          runner.filter().initialize_tracking(
+          restart_plan_filter(
               plan_start(moved->plan_pose,
                          options.dual_check.local_reinitialize_sigma / location.scale,
                          options.dual_check.local_reinitialize_heading_sigma, location.scale, 0.0),
-              maps.plan());
-          record.plan_reinitialized = true;
+              record);
           check.forget_local();
           // Its poses since the last check were where the submap does not fit.
           for (std::size_t k = vouched + 1; k <= i; ++k)

@@ -11,17 +11,6 @@ namespace floorgrid {
 
 namespace {
 
-/// Every k-th point of `cloud`, at most `keep` of them.
-ScanObservation thinned(const ScanObservation& cloud, std::size_t keep) {
-  if (cloud.size() <= keep)
-    return cloud;
-  ScanObservation out;
-  out.max_range = cloud.max_range;
-  for (std::size_t k = 0; k < keep; ++k)
-    out.push_back_beam(cloud, k * cloud.size() / keep);
-  return out;
-}
-
 /// The log-likelihood of `cloud` at each of `poses` (plan frame) at `scale`.
 std::vector<double> scores(const ObservationModel& field, const ScanObservation& cloud,
                            const std::vector<Pose2>& poses, double scale) {
@@ -80,6 +69,8 @@ SubmapCheck::SubmapCheck(const SubmapCheckOptions& options, const RobotLog& log,
     : options_(options), log_(log), field_(plan_field), scale_(scale) {}
 
 void SubmapCheck::add(std::size_t scan, const Pose2& grid_pose) {
+  if (!options_.enabled)
+    return;
   while (!joined_.empty() && joined_.front().scan + options_.window < scan)
     joined_.pop_front();
   if (!joined_.empty()) {
@@ -132,7 +123,7 @@ std::optional<SubmapRelocation> SubmapCheck::search(const Pose2& grid_pose, cons
   const ScanObservation cloud = build_submap(log_, scans, poses, grid_pose, options_.submap);
   if (cloud.size() < options_.coarse_points / 4)
     return std::nullopt;
-  const ScanObservation coarse = thinned(cloud, options_.coarse_points);
+  const ScanObservation coarse = thin(cloud, options_.coarse_points);
 
   // World metres from the plan filter's pose. The best placement near it is compared with
   // the best away from it that also lies near where the registration puts the robot.
@@ -159,11 +150,11 @@ std::optional<SubmapRelocation> SubmapCheck::search(const Pose2& grid_pose, cons
     }
   }
   const std::vector<double> s = scores(field_, coarse, lattice, scale_);
-  std::size_t near = 0;  // the lattice's centre is near
+  std::size_t near = lattice.size() / 2;  // the lattice's centre: the plan filter's pose
   std::vector<std::size_t> far;
   for (std::size_t k = 0; k < lattice.size(); ++k) {
     if (is_near(lattice[k])) {
-      if (!is_near(lattice[near]) || s[k] > s[near])
+      if (s[k] > s[near])
         near = k;
     } else if (is_away(lattice[k])) {
       far.push_back(k);
