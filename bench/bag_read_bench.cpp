@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-#include "floorgrid/io/bag_file.hpp"
+#include "floorgrid/io/logs/bag_file.hpp"
 
 namespace {
 

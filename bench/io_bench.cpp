@@ -3,9 +3,9 @@
 
 #include <filesystem>
 
-#include "floorgrid/io/carmen_log.hpp"
-#include "floorgrid/io/dxf_reader.hpp"
-#include "floorgrid/io/map_io.hpp"
+#include "floorgrid/io/formats/map_io.hpp"
+#include "floorgrid/io/logs/carmen_log.hpp"
+#include "floorgrid/io/plans/dxf_reader.hpp"
 #include "floorgrid/maps/rasterize.hpp"
 
 namespace {

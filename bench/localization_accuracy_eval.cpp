@@ -16,9 +16,9 @@
 #include <nlohmann/json.hpp>
 
 #include "floorgrid/evaluation/overlay.hpp"
-#include "floorgrid/io/carmen_writer.hpp"
-#include "floorgrid/io/dataset_loader.hpp"
-#include "floorgrid/io/image_io.hpp"
+#include "floorgrid/io/dataset/dataset_loader.hpp"
+#include "floorgrid/io/files/image_io.hpp"
+#include "floorgrid/io/logs/carmen_writer.hpp"
 #include "floorgrid/pipeline/dual_localizer.hpp"
 
 using namespace floorgrid;

@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "floorgrid/core/random.hpp"
-#include "floorgrid/io/map_io.hpp"
+#include "floorgrid/io/formats/map_io.hpp"
 #include "floorgrid/localization/beam_model.hpp"
 #include "floorgrid/localization/likelihood_field_model.hpp"
 #include "floorgrid/localization/ray_marching.hpp"

@@ -15,7 +15,7 @@
 #include <optional>
 
 #include "floorgrid/evaluation/domain.hpp"
-#include "floorgrid/io/pairs_csv.hpp"
+#include "floorgrid/io/formats/pairs_csv.hpp"
 #include "floorgrid/mapping/mapping_factory.hpp"
 #include "floorgrid/maps/layer_filter.hpp"
 #include "floorgrid/simulation/simulator.hpp"

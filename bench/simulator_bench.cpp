@@ -3,7 +3,7 @@
 
 #include <filesystem>
 
-#include "floorgrid/io/simulation_writer.hpp"
+#include "floorgrid/io/dataset/simulation_writer.hpp"
 #include "floorgrid/simulation/simulator.hpp"
 
 namespace {

@@ -20,8 +20,8 @@
 #include <thread>
 #include <vector>
 
-#include "floorgrid/io/model_io.hpp"
-#include "floorgrid/io/pairs_csv.hpp"
+#include "floorgrid/io/formats/model_io.hpp"
+#include "floorgrid/io/formats/pairs_csv.hpp"
 #include "floorgrid/mapping/mapping_factory.hpp"
 #include "floorgrid/server/viewer_server.hpp"
 

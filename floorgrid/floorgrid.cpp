@@ -4,13 +4,13 @@
 #include <limits>
 
 #include "floorgrid/core/parallel.hpp"
-#include "floorgrid/io/alignment_job.hpp"
-#include "floorgrid/io/atomic_file.hpp"
-#include "floorgrid/io/model_io.hpp"
-#include "floorgrid/io/options_schema.hpp"
-#include "floorgrid/io/points_csv.hpp"
-#include "floorgrid/io/system_memory.hpp"
-#include "floorgrid/io/value_json.hpp"
+#include "floorgrid/io/files/atomic_file.hpp"
+#include "floorgrid/io/files/system_memory.hpp"
+#include "floorgrid/io/files/value_json.hpp"
+#include "floorgrid/io/formats/model_io.hpp"
+#include "floorgrid/io/formats/points_csv.hpp"
+#include "floorgrid/io/jobs/alignment_job.hpp"
+#include "floorgrid/io/options/options_schema.hpp"
 
 namespace floorgrid {
 

@@ -20,7 +20,7 @@
 
 #include "floorgrid/core/error.hpp"
 #include "floorgrid/geometry/reference_pairs.hpp"
-#include "floorgrid/io/job_options.hpp"
+#include "floorgrid/io/options/job_options.hpp"
 #include "floorgrid/mapping/checked_fit.hpp"
 #include "floorgrid/mapping/point_mapping.hpp"
 

@@ -1,5 +1,5 @@
 // CARMEN logs (io/carmen_log), plain or gzip-compressed (told by content).
-#include "floorgrid/io/carmen_log.hpp"
+#include "floorgrid/io/logs/carmen_log.hpp"
 #include "fuzz/fuzz_support.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

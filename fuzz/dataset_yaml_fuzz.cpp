@@ -1,6 +1,6 @@
 // Dataset manifests (io/dataset_manifest): every key, with small valid files beside it that a
 // manifest may name (plan.pgm, gridmap.yaml + gridmap.pgm, log.carmen, pairs.csv).
-#include "floorgrid/io/dataset_manifest.hpp"
+#include "floorgrid/io/dataset/dataset_manifest.hpp"
 #include "fuzz/fuzz_support.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -1,5 +1,5 @@
 // DXF floorplans (io/dxf_reader): entities, blocks, inserts, units, layers.
-#include "floorgrid/io/dxf_reader.hpp"
+#include "floorgrid/io/plans/dxf_reader.hpp"
 #include "fuzz/fuzz_support.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

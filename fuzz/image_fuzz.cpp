@@ -1,5 +1,5 @@
 // Map images (io/image_io): PGM (P2, P5) and PNG of every colour type and depth.
-#include "floorgrid/io/image_io.hpp"
+#include "floorgrid/io/files/image_io.hpp"
 #include "fuzz/fuzz_support.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

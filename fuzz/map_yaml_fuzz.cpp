@@ -1,6 +1,6 @@
 // Map YAML (io/map_io): the ROS map_server fields, with a small valid image beside it
 // (`map.pgm`) that the YAML may name, and the occupancy rule applied to it.
-#include "floorgrid/io/map_io.hpp"
+#include "floorgrid/io/formats/map_io.hpp"
 #include "fuzz/fuzz_support.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

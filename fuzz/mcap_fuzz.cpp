@@ -1,5 +1,5 @@
 // MCAP files (io/mcap_reader): contents (summary or read through) and every message streamed.
-#include "floorgrid/io/bag_file.hpp"
+#include "floorgrid/io/logs/bag_file.hpp"
 #include "fuzz/fuzz_support.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

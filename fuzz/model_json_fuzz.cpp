@@ -1,6 +1,6 @@
 // Model files (io/model_io): every model's parameters, then a mapping through the loaded model
 // (a file that loads must map without crashing).
-#include "floorgrid/io/model_io.hpp"
+#include "floorgrid/io/formats/model_io.hpp"
 #include "fuzz/fuzz_support.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -1,5 +1,5 @@
 // Pairs CSV (io/pairs_csv): plan_x,plan_y,grid_x,grid_y[,weight], in metres and in pixels.
-#include "floorgrid/io/pairs_csv.hpp"
+#include "floorgrid/io/formats/pairs_csv.hpp"
 #include "fuzz/fuzz_support.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -2,8 +2,8 @@
 // CSV, zones as a DXF layer's closed polylines and hatches. The same bytes go to each reader.
 #include <string_view>
 
-#include "floorgrid/io/dxf_zones.hpp"
-#include "floorgrid/io/plan_layers_io.hpp"
+#include "floorgrid/io/plans/dxf_zones.hpp"
+#include "floorgrid/io/plans/plan_layers_io.hpp"
 #include "fuzz/fuzz_support.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

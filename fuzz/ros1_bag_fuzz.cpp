@@ -1,5 +1,5 @@
 // ROS 1 bags (io/ros1_bag): the contents from the index (or read through) and every message.
-#include "floorgrid/io/bag_file.hpp"
+#include "floorgrid/io/logs/bag_file.hpp"
 #include "fuzz/fuzz_support.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -1,8 +1,8 @@
 // ROS message payloads (io/ros_messages): LaserScan, Odometry and TFMessage, each in the ROS 1
 // and the CDR encoding, and the checks of their values (io/bag_message_checks). The first byte
 // chooses the message and the encoding.
-#include "floorgrid/io/bag_message_checks.hpp"
-#include "floorgrid/io/ros_messages.hpp"
+#include "floorgrid/io/logs/bag_message_checks.hpp"
+#include "floorgrid/io/logs/ros_messages.hpp"
 #include "fuzz/fuzz_support.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

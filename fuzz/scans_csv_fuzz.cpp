@@ -1,5 +1,5 @@
 // The run's track as `serve --replay` reads it (io/scans_csv): scans.csv, columns by the header.
-#include "floorgrid/io/scans_csv.hpp"
+#include "floorgrid/io/formats/scans_csv.hpp"
 #include "fuzz/fuzz_support.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-# Generates floorgrid/io/viridis.cpp's 256 entries from the published degree-6 polynomial
+# Generates floorgrid/io/report/viridis.cpp's 256 entries from the published degree-6 polynomial
 # fit of matplotlib's viridis (Matt Zucker, shadertoy WlfXRN, CC0).
 c = [
     (0.2777273272234177, 0.005407344544966578, 0.3340998053353061),

@@ -10,7 +10,7 @@
 #include <filesystem>
 
 #include "floorgrid/core/error.hpp"
-#include "floorgrid/io/report_html.hpp"
+#include "floorgrid/io/report/report_html.hpp"
 
 namespace floorgrid::app {
 

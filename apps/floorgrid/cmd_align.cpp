@@ -11,8 +11,8 @@
 #include "apps/floorgrid/progress.hpp"
 #include "apps/floorgrid/summaries.hpp"
 #include "floorgrid/core/error.hpp"
-#include "floorgrid/io/alignment_job.hpp"
-#include "floorgrid/io/atomic_file.hpp"
+#include "floorgrid/io/files/atomic_file.hpp"
+#include "floorgrid/io/jobs/alignment_job.hpp"
 
 namespace floorgrid::app {
 

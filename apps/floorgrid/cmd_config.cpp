@@ -3,7 +3,7 @@
 
 #include "apps/floorgrid/commands.hpp"
 #include "floorgrid/core/error.hpp"
-#include "floorgrid/io/options_schema.hpp"
+#include "floorgrid/io/options/options_schema.hpp"
 
 namespace floorgrid::app {
 

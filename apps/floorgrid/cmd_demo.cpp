@@ -4,8 +4,8 @@
 #include "apps/floorgrid/cli_util.hpp"
 #include "apps/floorgrid/commands.hpp"
 #include "apps/floorgrid/job_options.hpp"
-#include "floorgrid/io/atomic_file.hpp"
-#include "floorgrid/io/simulation_writer.hpp"
+#include "floorgrid/io/dataset/simulation_writer.hpp"
+#include "floorgrid/io/files/atomic_file.hpp"
 #include "floorgrid/simulation/simulator.hpp"
 
 namespace floorgrid::app {

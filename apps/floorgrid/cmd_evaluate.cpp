@@ -10,12 +10,12 @@
 #include "apps/floorgrid/dataset_run.hpp"
 #include "apps/floorgrid/job_options.hpp"
 #include "floorgrid/core/error.hpp"
-#include "floorgrid/io/alignment_writer.hpp"
-#include "floorgrid/io/atomic_file.hpp"
-#include "floorgrid/io/dataset_loader.hpp"
-#include "floorgrid/io/heat_map_files.hpp"
-#include "floorgrid/io/image_io.hpp"
-#include "floorgrid/io/model_io.hpp"
+#include "floorgrid/io/dataset/dataset_loader.hpp"
+#include "floorgrid/io/files/atomic_file.hpp"
+#include "floorgrid/io/files/image_io.hpp"
+#include "floorgrid/io/formats/model_io.hpp"
+#include "floorgrid/io/jobs/alignment_writer.hpp"
+#include "floorgrid/io/report/heat_map_files.hpp"
 
 namespace floorgrid::app {
 

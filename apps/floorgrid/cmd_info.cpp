@@ -8,7 +8,7 @@
 
 #include "apps/floorgrid/cli_util.hpp"
 #include "apps/floorgrid/commands.hpp"
-#include "floorgrid/io/describe.hpp"
+#include "floorgrid/io/dataset/describe.hpp"
 
 namespace floorgrid::app {
 

@@ -8,8 +8,8 @@
 #include "apps/floorgrid/commands.hpp"
 #include "floorgrid/core/error.hpp"
 #include "floorgrid/core/parallel.hpp"
-#include "floorgrid/io/model_io.hpp"
-#include "floorgrid/io/points_csv.hpp"
+#include "floorgrid/io/formats/model_io.hpp"
+#include "floorgrid/io/formats/points_csv.hpp"
 
 namespace floorgrid::app {
 

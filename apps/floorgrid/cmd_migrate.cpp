@@ -11,11 +11,11 @@
 #include "floorgrid/evaluation/mask_migration.hpp"
 #include "floorgrid/evaluation/waypoint_mapping.hpp"
 #include "floorgrid/evaluation/zone_mask.hpp"
-#include "floorgrid/io/atomic_file.hpp"
-#include "floorgrid/io/map_io.hpp"
-#include "floorgrid/io/model_io.hpp"
-#include "floorgrid/io/nav2_filter_mask.hpp"
-#include "floorgrid/io/plan_layers_io.hpp"
+#include "floorgrid/io/files/atomic_file.hpp"
+#include "floorgrid/io/formats/map_io.hpp"
+#include "floorgrid/io/formats/model_io.hpp"
+#include "floorgrid/io/formats/nav2_filter_mask.hpp"
+#include "floorgrid/io/plans/plan_layers_io.hpp"
 
 namespace floorgrid::app {
 

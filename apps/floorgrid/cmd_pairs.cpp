@@ -9,10 +9,10 @@
 #include "apps/floorgrid/progress.hpp"
 #include "apps/floorgrid/summaries.hpp"
 #include "floorgrid/core/error.hpp"
-#include "floorgrid/io/atomic_file.hpp"
-#include "floorgrid/io/dataset_loader.hpp"
-#include "floorgrid/io/pairs_csv.hpp"
-#include "floorgrid/io/scans_csv.hpp"
+#include "floorgrid/io/dataset/dataset_loader.hpp"
+#include "floorgrid/io/files/atomic_file.hpp"
+#include "floorgrid/io/formats/pairs_csv.hpp"
+#include "floorgrid/io/formats/scans_csv.hpp"
 
 namespace floorgrid::app {
 

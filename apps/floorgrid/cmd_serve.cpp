@@ -8,11 +8,11 @@
 
 #include "apps/floorgrid/commands.hpp"
 #include "floorgrid/core/error.hpp"
-#include "floorgrid/io/atomic_file.hpp"
-#include "floorgrid/io/dataset_loader.hpp"
-#include "floorgrid/io/model_io.hpp"
-#include "floorgrid/io/pairs_csv.hpp"
-#include "floorgrid/io/scans_csv.hpp"
+#include "floorgrid/io/dataset/dataset_loader.hpp"
+#include "floorgrid/io/files/atomic_file.hpp"
+#include "floorgrid/io/formats/model_io.hpp"
+#include "floorgrid/io/formats/pairs_csv.hpp"
+#include "floorgrid/io/formats/scans_csv.hpp"
 #include "floorgrid/server/pose_replay.hpp"
 #include "floorgrid/server/viewer_server.hpp"
 

@@ -1,6 +1,6 @@
 #pragma once
 
-#include "floorgrid/io/dataset_run.hpp"
+#include "floorgrid/io/dataset/dataset_run.hpp"
 
 namespace floorgrid::app {
 

@@ -3,7 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <memory>
 
-#include "floorgrid/io/job_options.hpp"
+#include "floorgrid/io/options/job_options.hpp"
 
 namespace floorgrid::app {
 

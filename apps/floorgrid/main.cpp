@@ -8,7 +8,7 @@
 
 #include "apps/floorgrid/commands.hpp"
 #include "floorgrid/core/error.hpp"
-#include "floorgrid/io/atomic_file.hpp"
+#include "floorgrid/io/files/atomic_file.hpp"
 
 int main(int argc, char** argv) {
   floorgrid::io::remove_temporaries_on_signals();

@@ -5,10 +5,10 @@
 #include "apps/floorgrid/cli_util.hpp"
 #include "floorgrid/core/error.hpp"
 #include "floorgrid/evaluation/waypoint_mapping.hpp"
-#include "floorgrid/io/atomic_file.hpp"
-#include "floorgrid/io/dxf_reader.hpp"
-#include "floorgrid/io/nav2_filter_mask.hpp"
-#include "floorgrid/io/plan_layers_io.hpp"
+#include "floorgrid/io/files/atomic_file.hpp"
+#include "floorgrid/io/formats/nav2_filter_mask.hpp"
+#include "floorgrid/io/plans/dxf_reader.hpp"
+#include "floorgrid/io/plans/plan_layers_io.hpp"
 
 namespace floorgrid::app {
 

@@ -5,7 +5,7 @@
 #include <string>
 
 #include "floorgrid/evaluation/zone_mask.hpp"
-#include "floorgrid/io/dataset_loader.hpp"
+#include "floorgrid/io/dataset/dataset_loader.hpp"
 #include "floorgrid/mapping/point_mapping.hpp"
 
 namespace floorgrid::app {

@@ -6,9 +6,9 @@
 
 #include "floorgrid/core/error.hpp"
 #include "floorgrid/evaluation/waypoint_mapping.hpp"
-#include "floorgrid/io/image_io.hpp"
-#include "floorgrid/io/nav2_filter_mask.hpp"
-#include "floorgrid/io/plan_layers_io.hpp"
+#include "floorgrid/io/files/image_io.hpp"
+#include "floorgrid/io/formats/nav2_filter_mask.hpp"
+#include "floorgrid/io/plans/plan_layers_io.hpp"
 #include "floorgrid/server/printable_text.hpp"
 
 namespace floorgrid::server {

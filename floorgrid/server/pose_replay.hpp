@@ -6,7 +6,7 @@
 #include <thread>
 #include <vector>
 
-#include "floorgrid/io/scans_csv.hpp"
+#include "floorgrid/io/formats/scans_csv.hpp"
 #include "floorgrid/server/viewer_session.hpp"
 
 namespace floorgrid::server {

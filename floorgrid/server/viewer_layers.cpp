@@ -4,10 +4,10 @@
 #include <utility>
 
 #include "floorgrid/evaluation/overlay.hpp"
-#include "floorgrid/io/alignment_writer.hpp"
-#include "floorgrid/io/heat_map_files.hpp"
-#include "floorgrid/io/heat_map_png.hpp"
-#include "floorgrid/io/image_io.hpp"
+#include "floorgrid/io/files/image_io.hpp"
+#include "floorgrid/io/jobs/alignment_writer.hpp"
+#include "floorgrid/io/report/heat_map_files.hpp"
+#include "floorgrid/io/report/heat_map_png.hpp"
 
 namespace floorgrid::server {
 

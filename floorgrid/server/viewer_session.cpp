@@ -6,8 +6,8 @@
 #include <utility>
 
 #include "floorgrid/core/error.hpp"
-#include "floorgrid/io/image_io.hpp"
-#include "floorgrid/io/map_io.hpp"
+#include "floorgrid/io/files/image_io.hpp"
+#include "floorgrid/io/formats/map_io.hpp"
 #include "floorgrid/mapping/fit_with_uncertainty.hpp"
 
 namespace floorgrid::server {

@@ -6,9 +6,9 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "floorgrid/io/pairs_csv.hpp"
-#include "floorgrid/io/report_format.hpp"
-#include "floorgrid/io/truth_json.hpp"
+#include "floorgrid/io/formats/pairs_csv.hpp"
+#include "floorgrid/io/formats/truth_json.hpp"
+#include "floorgrid/io/report/report_format.hpp"
 #include "tests/support/test_data.hpp"
 
 namespace floorgrid {

@@ -4,9 +4,9 @@
 
 #include <sstream>
 
-#include "floorgrid/io/dxf_writer.hpp"
-#include "floorgrid/io/map_io.hpp"
-#include "floorgrid/io/pairs_csv.hpp"
+#include "floorgrid/io/formats/map_io.hpp"
+#include "floorgrid/io/formats/pairs_csv.hpp"
+#include "floorgrid/io/plans/dxf_writer.hpp"
 #include "tests/io/export_test_support.hpp"
 #include "tests/support/simulated_room.hpp"
 

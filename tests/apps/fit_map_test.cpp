@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "floorgrid/core/random.hpp"
-#include "floorgrid/io/pairs_csv.hpp"
+#include "floorgrid/io/formats/pairs_csv.hpp"
 #include "tests/support/test_data.hpp"
 
 namespace floorgrid {

@@ -9,8 +9,8 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "floorgrid/io/dataset_loader.hpp"
-#include "floorgrid/io/model_io.hpp"
+#include "floorgrid/io/dataset/dataset_loader.hpp"
+#include "floorgrid/io/formats/model_io.hpp"
 #include "floorgrid/maps/distance_field.hpp"
 #include "tests/support/test_data.hpp"
 

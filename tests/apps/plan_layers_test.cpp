@@ -8,8 +8,8 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "floorgrid/io/map_io.hpp"
-#include "floorgrid/io/truth_json.hpp"
+#include "floorgrid/io/formats/map_io.hpp"
+#include "floorgrid/io/formats/truth_json.hpp"
 #include "floorgrid/maps/polygon_raster.hpp"
 #include "tests/support/test_data.hpp"
 

@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <string>
 
-#include "floorgrid/io/model_io.hpp"
+#include "floorgrid/io/formats/model_io.hpp"
 #include "floorgrid/mapping/mapping_factory.hpp"
 #include "tests/support/test_data.hpp"
 

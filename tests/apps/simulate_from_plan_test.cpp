@@ -4,10 +4,10 @@
 
 #include <filesystem>
 
-#include "floorgrid/io/carmen_log.hpp"
-#include "floorgrid/io/dataset_manifest.hpp"
-#include "floorgrid/io/map_io.hpp"
-#include "floorgrid/io/truth_json.hpp"
+#include "floorgrid/io/dataset/dataset_manifest.hpp"
+#include "floorgrid/io/formats/map_io.hpp"
+#include "floorgrid/io/formats/truth_json.hpp"
+#include "floorgrid/io/logs/carmen_log.hpp"
 #include "tests/support/test_data.hpp"
 
 namespace floorgrid {

@@ -3,14 +3,14 @@
 
 #include <filesystem>
 
-#include "floorgrid/io/carmen_log.hpp"
-#include "floorgrid/io/dataset_loader.hpp"
-#include "floorgrid/io/dataset_manifest.hpp"
-#include "floorgrid/io/dxf_reader.hpp"
-#include "floorgrid/io/image_io.hpp"
-#include "floorgrid/io/map_io.hpp"
-#include "floorgrid/io/pairs_csv.hpp"
-#include "floorgrid/io/truth_json.hpp"
+#include "floorgrid/io/dataset/dataset_loader.hpp"
+#include "floorgrid/io/dataset/dataset_manifest.hpp"
+#include "floorgrid/io/files/image_io.hpp"
+#include "floorgrid/io/formats/map_io.hpp"
+#include "floorgrid/io/formats/pairs_csv.hpp"
+#include "floorgrid/io/formats/truth_json.hpp"
+#include "floorgrid/io/logs/carmen_log.hpp"
+#include "floorgrid/io/plans/dxf_reader.hpp"
 #include "floorgrid/simulation/simulator.hpp"
 #include "tests/support/test_data.hpp"
 

@@ -8,7 +8,7 @@
 #include <csignal>
 #include <filesystem>
 
-#include "floorgrid/io/atomic_file.hpp"
+#include "floorgrid/io/files/atomic_file.hpp"
 #include "tests/support/test_data.hpp"
 
 namespace floorgrid {

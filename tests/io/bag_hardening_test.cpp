@@ -14,8 +14,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "floorgrid/io/bag_file.hpp"
-#include "floorgrid/io/bag_log.hpp"
+#include "floorgrid/io/logs/bag_file.hpp"
+#include "floorgrid/io/logs/bag_log.hpp"
 #include "tests/support/bag_writers.hpp"
 #include "tests/support/expect_error.hpp"
 #include "tests/support/test_data.hpp"

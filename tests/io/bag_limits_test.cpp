@@ -1,10 +1,10 @@
 // The bag readers' chunk limit: 256 MiB at most, an eighth of the memory limit below that
-// (io/bag_file.hpp BagReadLimits).
+// (io/logs/bag_file.hpp BagReadLimits).
 #include <gtest/gtest.h>
 
 #include <filesystem>
 
-#include "floorgrid/io/bag_file.hpp"
+#include "floorgrid/io/logs/bag_file.hpp"
 #include "tests/support/expect_error.hpp"
 
 namespace floorgrid::io {

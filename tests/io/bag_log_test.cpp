@@ -2,7 +2,7 @@
 // from /tf alone, a laser mounted off-centre and upside down, and the choices and refusals of
 // topics. The bags are written by an independent writer (tests/bags/write_ros1_bag.py, Debian's
 // python3-rosbag) from fr079's first 200 scans.
-#include "floorgrid/io/bag_log.hpp"
+#include "floorgrid/io/logs/bag_log.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,10 +10,10 @@
 #include <cstring>
 #include <numbers>
 
-#include "floorgrid/io/carmen_log.hpp"
-#include "floorgrid/io/line_reader.hpp"
-#include "floorgrid/io/pairs_csv.hpp"
-#include "floorgrid/io/robot_log_reader.hpp"
+#include "floorgrid/io/dataset/robot_log_reader.hpp"
+#include "floorgrid/io/files/line_reader.hpp"
+#include "floorgrid/io/formats/pairs_csv.hpp"
+#include "floorgrid/io/logs/carmen_log.hpp"
 #include "tests/io/ros1_bag_test_support.hpp"
 #include "tests/support/bag_writers.hpp"
 #include "tests/support/expect_error.hpp"

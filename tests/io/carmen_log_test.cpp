@@ -1,4 +1,4 @@
-#include "floorgrid/io/carmen_log.hpp"
+#include "floorgrid/io/logs/carmen_log.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "floorgrid/io/carmen_writer.hpp"
+#include "floorgrid/io/logs/carmen_writer.hpp"
 
 #include <gtest/gtest.h>
 
@@ -11,7 +11,7 @@
 #include <string>
 
 #include "floorgrid/core/error.hpp"
-#include "floorgrid/io/carmen_log.hpp"
+#include "floorgrid/io/logs/carmen_log.hpp"
 #include "tests/support/test_data.hpp"
 
 namespace floorgrid::io {

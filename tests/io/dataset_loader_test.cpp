@@ -1,13 +1,13 @@
 // Loading a dataset bounds what its maps may cost: large maps are cropped to their known area,
 // maps too large for the memory limit are refused with the estimate, and a map without free
 // space is refused naming its file.
-#include "floorgrid/io/dataset_loader.hpp"
+#include "floorgrid/io/dataset/dataset_loader.hpp"
 
 #include <gtest/gtest.h>
 
-#include "floorgrid/io/dxf_writer.hpp"
-#include "floorgrid/io/map_io.hpp"
-#include "floorgrid/io/simulation_writer.hpp"
+#include "floorgrid/io/dataset/simulation_writer.hpp"
+#include "floorgrid/io/formats/map_io.hpp"
+#include "floorgrid/io/plans/dxf_writer.hpp"
 #include "floorgrid/maps/layer_filter.hpp"
 #include "floorgrid/simulation/simulator.hpp"
 #include "tests/support/expect_error.hpp"

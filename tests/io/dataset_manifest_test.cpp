@@ -1,4 +1,4 @@
-#include "floorgrid/io/dataset_manifest.hpp"
+#include "floorgrid/io/dataset/dataset_manifest.hpp"
 
 #include <gtest/gtest.h>
 

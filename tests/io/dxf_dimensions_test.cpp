@@ -1,6 +1,6 @@
 // Dimension texts as unit evidence: MTEXT codes removed, stated lengths parsed.
 
-#include "floorgrid/io/dxf_dimensions.hpp"
+#include "floorgrid/io/plans/dxf_dimensions.hpp"
 
 #include <gtest/gtest.h>
 

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "floorgrid/io/dxf_reader.hpp"
+#include "floorgrid/io/plans/dxf_reader.hpp"
 #include "tests/io/dxf_test_support.hpp"
 
 namespace floorgrid::test {

@@ -8,7 +8,7 @@
 #include <numbers>
 
 #include "floorgrid/core/error.hpp"
-#include "floorgrid/io/dxf_reader.hpp"
+#include "floorgrid/io/plans/dxf_reader.hpp"
 #include "tests/io/dxf_test_support.hpp"
 
 namespace floorgrid::test {

@@ -1,7 +1,7 @@
 // DXF reader: one entity type at a time, each DXF hand-written and its geometry computed here by
 // hand; curves are also compared with ezdxf's own flattening.
 
-#include "floorgrid/io/dxf_reader.hpp"
+#include "floorgrid/io/plans/dxf_reader.hpp"
 
 #include <gtest/gtest.h>
 

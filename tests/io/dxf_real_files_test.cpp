@@ -7,7 +7,7 @@
 #include <string>
 
 #include "floorgrid/core/error.hpp"
-#include "floorgrid/io/dxf_reader.hpp"
+#include "floorgrid/io/plans/dxf_reader.hpp"
 #include "tests/io/dxf_test_support.hpp"
 
 namespace floorgrid::test {

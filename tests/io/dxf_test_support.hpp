@@ -16,7 +16,7 @@
 #include <string_view>
 #include <vector>
 
-#include "floorgrid/io/dxf_reader.hpp"
+#include "floorgrid/io/plans/dxf_reader.hpp"
 #include "floorgrid/maps/vector_floorplan.hpp"
 #include "tests/support/test_data.hpp"
 

@@ -8,7 +8,7 @@
 #include <memory>
 #include <string>
 
-#include "floorgrid/io/dxf_reader.hpp"
+#include "floorgrid/io/plans/dxf_reader.hpp"
 #include "tests/io/dxf_test_support.hpp"
 
 namespace floorgrid::test {

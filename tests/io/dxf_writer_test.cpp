@@ -1,7 +1,7 @@
 // DXF writer: what it writes reads back the same through our reader, through ezdxf and through
 // libdime (three independent readers), and it writes atomically.
 
-#include "floorgrid/io/dxf_writer.hpp"
+#include "floorgrid/io/plans/dxf_writer.hpp"
 
 #include <dime/Input.h>
 #include <dime/Model.h>
@@ -14,7 +14,7 @@
 #include <random>
 
 #include "floorgrid/core/error.hpp"
-#include "floorgrid/io/dxf_reader.hpp"
+#include "floorgrid/io/plans/dxf_reader.hpp"
 #include "tests/io/dxf_test_support.hpp"
 
 namespace floorgrid::test {

@@ -1,6 +1,6 @@
 // GDAL VRT: GCPs of a known similarity by hand, and GDAL's own transformers reading them back
 // (gdaltransform and gdalinfo from Debian's gdal-bin, a test tool only).
-#include "floorgrid/io/export_gdal_vrt.hpp"
+#include "floorgrid/io/export/export_gdal_vrt.hpp"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -10,8 +10,8 @@
 
 #include "floorgrid/core/error.hpp"
 #include "floorgrid/core/random.hpp"
-#include "floorgrid/io/atomic_file.hpp"
-#include "floorgrid/io/image_io.hpp"
+#include "floorgrid/io/files/atomic_file.hpp"
+#include "floorgrid/io/files/image_io.hpp"
 #include "tests/io/export_test_support.hpp"
 
 namespace floorgrid {

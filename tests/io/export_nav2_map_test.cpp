@@ -1,14 +1,14 @@
 // nav2 map of the plan's walls: a known square room through a known similarity lands on the
 // expected cells.
-#include "floorgrid/io/export_nav2_map.hpp"
+#include "floorgrid/io/export/export_nav2_map.hpp"
 
 #include <gtest/gtest.h>
 
 #include <set>
 
 #include "floorgrid/core/error.hpp"
-#include "floorgrid/io/image_io.hpp"
-#include "floorgrid/io/map_io.hpp"
+#include "floorgrid/io/files/image_io.hpp"
+#include "floorgrid/io/formats/map_io.hpp"
 #include "floorgrid/maps/rasterize.hpp"
 #include "tests/io/export_test_support.hpp"
 

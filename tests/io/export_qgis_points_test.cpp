@@ -1,5 +1,5 @@
 // QGIS Georeferencer .points: rows of a known similarity, by hand.
-#include "floorgrid/io/export_qgis_points.hpp"
+#include "floorgrid/io/export/export_qgis_points.hpp"
 
 #include <gtest/gtest.h>
 

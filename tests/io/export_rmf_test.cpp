@@ -1,5 +1,5 @@
 // Open-RMF traffic-editor layer: the transform of a known similarity, by hand.
-#include "floorgrid/io/export_rmf.hpp"
+#include "floorgrid/io/export/export_rmf.hpp"
 
 #include <gtest/gtest.h>
 

@@ -14,11 +14,11 @@
 #include <string>
 #include <vector>
 
-#include "floorgrid/io/dataset_manifest.hpp"
-#include "floorgrid/io/map_io.hpp"
-#include "floorgrid/io/model_io.hpp"
-#include "floorgrid/io/options_schema.hpp"
-#include "floorgrid/io/value_json.hpp"
+#include "floorgrid/io/dataset/dataset_manifest.hpp"
+#include "floorgrid/io/files/value_json.hpp"
+#include "floorgrid/io/formats/map_io.hpp"
+#include "floorgrid/io/formats/model_io.hpp"
+#include "floorgrid/io/options/options_schema.hpp"
 #include "tests/support/expect_error.hpp"
 #include "tests/support/test_data.hpp"
 

@@ -1,14 +1,14 @@
 // The heat maps' pictures: the viridis table (its ends, rising lightness), values through it up
 // to the clip, unknown cells transparent, the colour bar's panel and labels, the PNG file.
-#include "floorgrid/io/heat_map_png.hpp"
+#include "floorgrid/io/report/heat_map_png.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
 
-#include "floorgrid/io/image_io.hpp"
-#include "floorgrid/io/viridis.hpp"
+#include "floorgrid/io/files/image_io.hpp"
+#include "floorgrid/io/report/viridis.hpp"
 #include "tests/support/test_data.hpp"
 
 namespace floorgrid::io {

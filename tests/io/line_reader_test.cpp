@@ -1,4 +1,4 @@
-#include "floorgrid/io/line_reader.hpp"
+#include "floorgrid/io/files/line_reader.hpp"
 
 #include <gtest/gtest.h>
 

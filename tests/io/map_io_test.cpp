@@ -1,4 +1,4 @@
-#include "floorgrid/io/map_io.hpp"
+#include "floorgrid/io/formats/map_io.hpp"
 
 #include <gtest/gtest.h>
 
@@ -7,7 +7,7 @@
 #include <numbers>
 
 #include "floorgrid/core/error.hpp"
-#include "floorgrid/io/image_io.hpp"
+#include "floorgrid/io/files/image_io.hpp"
 #include "tests/support/expect_error.hpp"
 #include "tests/support/test_data.hpp"
 

@@ -9,9 +9,9 @@
 #include <string>
 
 #include "floorgrid/core/error.hpp"
-#include "floorgrid/io/model_io.hpp"
-#include "floorgrid/io/pairs_csv.hpp"
-#include "floorgrid/io/value_json.hpp"
+#include "floorgrid/io/files/value_json.hpp"
+#include "floorgrid/io/formats/model_io.hpp"
+#include "floorgrid/io/formats/pairs_csv.hpp"
 #include "floorgrid/mapping/mapping_factory.hpp"
 #include "tests/support/expect_error.hpp"
 #include "tests/support/test_data.hpp"

@@ -3,7 +3,7 @@
 // formula for the mask's mode (written out here independently of the writer), give the
 // OccupancyGrid values nav2's KeepoutFilter and SpeedFilter read; the filter-info params; the
 // FollowWaypoints poses.
-#include "floorgrid/io/nav2_filter_mask.hpp"
+#include "floorgrid/io/formats/nav2_filter_mask.hpp"
 
 #include <gtest/gtest.h>
 
@@ -11,8 +11,8 @@
 #include <map>
 
 #include "floorgrid/core/error.hpp"
-#include "floorgrid/io/image_io.hpp"
-#include "floorgrid/io/map_io.hpp"
+#include "floorgrid/io/files/image_io.hpp"
+#include "floorgrid/io/formats/map_io.hpp"
 #include "tests/io/export_test_support.hpp"
 
 namespace floorgrid {

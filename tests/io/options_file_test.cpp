@@ -1,4 +1,4 @@
-#include "floorgrid/io/options_file.hpp"
+#include "floorgrid/io/options/options_file.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // config --dump's list of options: complete (every field of every options struct is named, so
 // a new option cannot be forgotten), and read back to the same options.
-#include "floorgrid/io/options_schema.hpp"
+#include "floorgrid/io/options/options_schema.hpp"
 
 #include <gtest/gtest.h>
 
@@ -21,7 +21,7 @@ void expect_complete(const char* name, std::size_t omitted = 0) {
   test::TopLevelCounter counter;
   visit(counter, options);
   EXPECT_EQ(counter.count + omitted, test::field_count<T>())
-      << name << ": a field is missing from io/options_schema.cpp (or a name is repeated)";
+      << name << ": a field is missing from io/options/options_schema.cpp (or a name is repeated)";
 }
 
 TEST(OptionsSchema, EveryFieldOfEveryOptionsStructIsListed) {

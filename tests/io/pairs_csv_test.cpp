@@ -1,4 +1,4 @@
-#include "floorgrid/io/pairs_csv.hpp"
+#include "floorgrid/io/formats/pairs_csv.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,12 +1,12 @@
 // Zones and waypoints read from GeoJSON (plan metres), CSV and DXF layers, and what is refused:
 // open and self-intersecting rings (naming the feature), WGS84 degrees, NaN, a missing DXF layer
 // (listing the layers the file has).
-#include "floorgrid/io/plan_layers_io.hpp"
+#include "floorgrid/io/plans/plan_layers_io.hpp"
 
 #include <gtest/gtest.h>
 
 #include "floorgrid/core/error.hpp"
-#include "floorgrid/io/dxf_zones.hpp"
+#include "floorgrid/io/plans/dxf_zones.hpp"
 #include "tests/support/test_data.hpp"
 
 namespace floorgrid {

@@ -7,10 +7,10 @@
 #include <regex>
 
 #include "floorgrid/core/error.hpp"
-#include "floorgrid/io/base64.hpp"
-#include "floorgrid/io/image_io.hpp"
-#include "floorgrid/io/report_format.hpp"
-#include "floorgrid/io/report_html.hpp"
+#include "floorgrid/io/files/base64.hpp"
+#include "floorgrid/io/files/image_io.hpp"
+#include "floorgrid/io/report/report_format.hpp"
+#include "floorgrid/io/report/report_html.hpp"
 #include "tests/support/test_data.hpp"
 
 namespace floorgrid {

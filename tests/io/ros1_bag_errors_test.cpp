@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "floorgrid/core/error.hpp"
-#include "floorgrid/io/bag_file.hpp"
+#include "floorgrid/io/logs/bag_file.hpp"
 #include "tests/io/ros1_bag_test_support.hpp"
 #include "tests/support/expect_error.hpp"
 #include "tests/support/test_data.hpp"

@@ -10,7 +10,7 @@
 #include <set>
 #include <string>
 
-#include "floorgrid/io/bag_file.hpp"
+#include "floorgrid/io/logs/bag_file.hpp"
 #include "tests/support/test_data.hpp"
 
 namespace floorgrid::io::ros1_test {

@@ -1,7 +1,7 @@
 // Decoding of LaserScan, Odometry and TFMessage payloads, byte by byte as the two encodings lay
 // them out (ROS 1: packed; CDR: aligned after a 4-byte encapsulation header, strings with their
 // NUL). The bags written by independent writers are read in the bag tests.
-#include "floorgrid/io/ros_messages.hpp"
+#include "floorgrid/io/logs/ros_messages.hpp"
 
 #include <gtest/gtest.h>
 

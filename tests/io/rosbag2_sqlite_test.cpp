@@ -3,8 +3,8 @@
 // as ROS 2 messages.
 #include <gtest/gtest.h>
 
-#include "floorgrid/io/bag_file.hpp"
-#include "floorgrid/io/rosbag2_folder.hpp"
+#include "floorgrid/io/logs/bag_file.hpp"
+#include "floorgrid/io/logs/rosbag2_folder.hpp"
 #include "tests/support/bag_writers.hpp"
 #include "tests/support/expect_error.hpp"
 #include "tests/support/test_data.hpp"

@@ -1,4 +1,4 @@
-#include "floorgrid/io/scans_csv.hpp"
+#include "floorgrid/io/formats/scans_csv.hpp"
 
 #include <gtest/gtest.h>
 

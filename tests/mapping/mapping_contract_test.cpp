@@ -7,7 +7,7 @@
 
 #include "floorgrid/core/error.hpp"
 #include "floorgrid/geometry/convex_hull.hpp"
-#include "floorgrid/io/value_json.hpp"
+#include "floorgrid/io/files/value_json.hpp"
 #include "floorgrid/mapping/mapping_factory.hpp"
 #include "floorgrid/mapping/model_file.hpp"
 #include "tests/mapping/mapping_test_data.hpp"

@@ -10,8 +10,8 @@
 #include <limits>
 
 #include "floorgrid/core/error.hpp"
-#include "floorgrid/io/dataset_loader.hpp"
-#include "floorgrid/io/simulation_writer.hpp"
+#include "floorgrid/io/dataset/dataset_loader.hpp"
+#include "floorgrid/io/dataset/simulation_writer.hpp"
 #include "floorgrid/simulation/simulator.hpp"
 #include "tests/support/test_data.hpp"
 

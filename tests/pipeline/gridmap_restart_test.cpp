@@ -3,7 +3,7 @@
 // hypotheses over the whole map, it wandered the building's look-alike corridors for dozens.
 #include <gtest/gtest.h>
 
-#include "floorgrid/io/carmen_log.hpp"
+#include "floorgrid/io/logs/carmen_log.hpp"
 #include "floorgrid/pipeline/dual_localizer.hpp"
 #include "floorgrid/pipeline/dual_maps.hpp"
 #include "floorgrid/pipeline/gridmap_localization.hpp"

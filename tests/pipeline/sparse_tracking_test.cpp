@@ -8,8 +8,8 @@
 #include <limits>
 #include <vector>
 
-#include "floorgrid/io/dataset_loader.hpp"
-#include "floorgrid/io/simulation_writer.hpp"
+#include "floorgrid/io/dataset/dataset_loader.hpp"
+#include "floorgrid/io/dataset/simulation_writer.hpp"
 #include "floorgrid/pipeline/dual_localizer.hpp"
 #include "floorgrid/pipeline/plan_tracking.hpp"
 #include "floorgrid/robot/odometry_noise.hpp"

@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "floorgrid/io/image_io.hpp"
+#include "floorgrid/io/files/image_io.hpp"
 #include "floorgrid/mapping/mapping_factory.hpp"
 #include "floorgrid/maps/rasterize.hpp"
 #include "tests/support/simulated_room.hpp"

@@ -16,7 +16,7 @@
 #include <tuple>
 #include <vector>
 
-#include "floorgrid/io/image_io.hpp"
+#include "floorgrid/io/files/image_io.hpp"
 #include "floorgrid/mapping/mapping_factory.hpp"
 #include "floorgrid/server/viewer_server.hpp"
 #include "tests/support/test_data.hpp"

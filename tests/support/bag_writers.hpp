@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "floorgrid/io/bag_file.hpp"
+#include "floorgrid/io/logs/bag_file.hpp"
 #include "tests/support/test_data.hpp"
 
 namespace floorgrid::test {

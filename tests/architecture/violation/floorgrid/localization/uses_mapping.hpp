@@ -2,5 +2,5 @@
 #pragma once
 
 #include <nlohmann/json.hpp>
-#include "floorgrid/io/map_io.hpp"
+#include "floorgrid/io/formats/map_io.hpp"
 #include "floorgrid/mapping/point_mapping.hpp"
