@@ -2,27 +2,21 @@
 against the simulator's truth."""
 
 import json
-import re
+import shutil
+import subprocess
+import sys
 
 import numpy as np
 import pytest
 
 import floorgrid
-from conftest import run_cli
+from conftest import ROOT, run_cli
 
-
-def without_wall_clock(node):
-    """metrics.json less what depends on the clock (timings_s, *_seconds, seconds, and the
-    notes' "in 7.4 s") or on the process (peak_memory_mib: Python's own memory counts too)."""
-    if isinstance(node, str):
-        return re.sub(r"\bin [0-9.]+ s\b", "in _ s", node)
-    if isinstance(node, dict):
-        return {k: without_wall_clock(v) for k, v in node.items()
-                if not (k in ("timings_s", "peak_memory_mib") or k.endswith("seconds")
-                        or k.endswith("_s"))}
-    if isinstance(node, list):
-        return [without_wall_clock(v) for v in node]
-    return node
+# bench/same_outputs.py's comparison: metrics.json less what depends on the clock (timings_s,
+# *seconds, *_s, printed seconds such as the notes' "in 7.4 s") or on the process
+# (peak_memory_mib: Python's own memory counts too).
+sys.path.insert(0, str(ROOT / "bench"))
+from same_outputs import without_wall_clock  # noqa: E402
 
 
 def test_metrics_equal_the_cli(cli_alignment, python_alignment, workdir):
@@ -32,6 +26,26 @@ def test_metrics_equal_the_cli(cli_alignment, python_alignment, workdir):
     assert without_wall_clock(written) == without_wall_clock(cli_metrics)
     assert without_wall_clock(result.metrics) == without_wall_clock(cli_metrics)
     assert "metrics.json" in result.files and "model.json" in result.files
+
+
+def test_every_file_equals_the_cli_and_a_changed_pair_is_caught(cli_alignment, python_alignment,
+                                                               workdir, tmp_path):
+    same_outputs = [sys.executable, str(ROOT / "bench" / "same_outputs.py")]
+    result = subprocess.run([*same_outputs, cli_alignment, workdir / "py-align"],
+                            capture_output=True, text=True)
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert " 0 differ" in result.stdout
+    # The same folder with one pair moved by a millimetre: the comparison must say so.
+    changed = tmp_path / "changed"
+    shutil.copytree(workdir / "py-align", changed)
+    lines = (changed / "pairs.csv").read_text().splitlines()
+    row = lines[1].split(",")
+    row[-1] = repr(float(row[-1]) + 0.001)
+    (changed / "pairs.csv").write_text("\n".join([lines[0], ",".join(row), *lines[2:]]) + "\n")
+    result = subprocess.run([*same_outputs, cli_alignment, changed], capture_output=True,
+                            text=True)
+    assert result.returncode == 1
+    assert "differs: pairs.csv" in result.stdout
 
 
 def test_pairs_and_models_equal_the_cli(cli_alignment, python_alignment):
